@@ -1,0 +1,116 @@
+// The scene as plain definitions with defaults, one field per key of the scene file
+// (docs/scene_format.md). The JSON reader in src/io fills these; the core builds a Model from
+// them and never sees JSON. Every def remembers its JSON path so that errors found later (a
+// degenerate block, say) can still name where in the file the problem is.
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "tem/types.hpp"
+
+namespace tem {
+
+enum class ShapeType { prism, ring, box, convex, compound };
+enum class Axis { x, y, z };
+enum class IntegratorKind { default_, paper };
+enum class ContactModel { semm, semm_paper, penalty };
+
+struct ShapeDef {
+  ShapeType type = ShapeType::box;
+  std::string path;  // JSON path of this shape, e.g. "bodies[1].shape"
+
+  // prism: regular `sides`-gon of circumradius `radius`, extruded by `height` along `axis`.
+  // ring: `segments`-gon centre line of circumradius `radius`, `sides`-gon section of
+  //       circumradius `section_radius`, split into `blocks` blocks, symmetry axis `axis`.
+  int sides = 6;
+  Real radius = 0;
+  Real height = 0;
+  int segments = 16;
+  Real section_radius = 0;
+  int blocks = 0;                // 0: one block per segment
+  bool allow_nonconvex = false;  // accept (and report) non-convex blocks, e.g. the paper's ring
+  Axis axis = Axis::z;
+
+  Vec3 size = Vec3::Zero();  // box edge lengths
+  std::vector<Vec3> points;  // convex: the block is the convex hull of these points
+
+  // compound: parts, each a shape placed in this shape's frame by `position` and `rotation`.
+  std::vector<ShapeDef> parts;
+  Vec3 position = Vec3::Zero();  // pose of this shape inside a compound
+  Mat3 rotation = Mat3::Identity();
+};
+
+struct BodyDef {
+  std::string name;
+  std::string path;  // "bodies[i]"
+  ShapeDef shape;
+  Real density = 1.0;
+  Vec3 position = Vec3::Zero();          // world position of the body frame's origin
+  Mat3 rotation = Mat3::Identity();      // body frame to world (from euler_zxz_deg or quaternion)
+  Vec3 velocity = Vec3::Zero();          // of the centre of mass, world axes
+  Vec3 angular_velocity = Vec3::Zero();  // world axes
+  bool fixed = false;
+};
+
+struct ContactDef {
+  ContactModel model = ContactModel::semm;
+  Real friction = 0.3;
+  Real restitution = 0.0;
+  Real stiffness = 0.0;  // penalty: normal spring constant (0: not given)
+  Real damping = 0.0;    // penalty: normal dashpot constant
+};
+
+struct WallDef {
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();  // unit, pointing into the space where bodies live
+};
+
+struct ContainerDef {
+  Vec3 min = Vec3::Zero();
+  Vec3 max = Vec3::Ones();
+};
+
+struct OutputDef {
+  Real interval = 0.01;
+  Real checkpoint_interval = 0.0;  // 0: no checkpoints
+  bool paraview = false;
+};
+
+// Earth's gravity in the paper's units (cm/s^2); the paper's own runs use 98.0.
+inline constexpr Real earth_gravity_cgs = 980.665;
+inline constexpr Real paper_gravity_cgs = 98.0;
+
+struct SceneDef {
+  std::string source;  // file name, for messages
+  Vec3 gravity{0, 0, -earth_gravity_cgs};
+  Real time_step = 1e-5;
+  Real duration = 1.0;
+  IntegratorKind integrator = IntegratorKind::default_;
+  ContactDef contact;
+  std::optional<ContainerDef> container;
+  std::vector<WallDef> walls;
+  std::vector<BodyDef> bodies;
+  OutputDef output;
+};
+
+// A problem in a scene that names where: `path` is the JSON path (e.g. "bodies[1].shape.radius").
+class SceneError : public std::runtime_error {
+ public:
+  SceneError(std::string path, const std::string& reason)
+      : std::runtime_error(path + ": " + reason), path_(std::move(path)) {}
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+// Rotation matrices of the scene's orientation conventions.
+Mat3 rotation_x(Real angle);
+Mat3 rotation_z(Real angle);
+// Goldstein z-x-z Euler angles (radians): g = Rz(phi) Rx(theta) Rz(psi), body to world.
+Mat3 euler_zxz(Real phi, Real theta, Real psi);
+
+}  // namespace tem

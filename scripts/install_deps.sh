@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs, from Debian's archive, every package TEM needs that is missing on this machine.
+# Safe to run again: it does nothing when everything is present.
+set -euo pipefail
+packages=(
+  build-essential cmake
+  libeigen3-dev          # vectors, matrices, small dense solves
+  nlohmann-json3-dev     # scene files
+  libcli11-dev           # command line
+  libqhull-dev           # convex hulls of user points
+  libgtest-dev           # tests
+  libbenchmark-dev       # benchmarks
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install_deps: everything TEM needs is installed"
+  exit 0
+fi
+echo "install_deps: installing ${missing[*]}"
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

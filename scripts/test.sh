@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds TEM twice (optimised with warnings as errors, and with
+# AddressSanitizer + UndefinedBehaviorSanitizer) and runs every test in both builds.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install_deps.sh
+jobs=$(nproc)
+for preset in ci sanitize; do
+  echo "== $preset =="
+  cmake --preset "$preset" >/dev/null
+  cmake --build --preset "$preset" -j "$jobs"
+  ctest --preset "$preset" -j "$jobs"
+done

@@ -1,0 +1,35 @@
+// What a step changes about one rigid body (method.md §3). Everything else about the body is in
+// the Model and never changes, so a checkpoint is just the State and restarting is exact.
+#pragma once
+
+#include <vector>
+
+#include "tem/types.hpp"
+
+namespace tem {
+
+struct BodyState {
+  Vec3 x = Vec3::Zero();            // centre of mass, world
+  Vec3 v = Vec3::Zero();            // velocity of the centre of mass, world
+  Mat3 g = Mat3::Identity();        // attitude, body to world (a rotation except under eq. 16)
+  Vec3 omega = Vec3::Zero();        // angular velocity Omega in BODY axes; L = g A Omega
+  Vec3 prev_torque = Vec3::Zero();  // N^{n-1}, world, for the paper's dN of eq. 18
+  bool has_prev_torque = false;     // false before the first step: dN is taken as zero then
+
+  Vec3 angular_velocity_world() const { return g * omega; }
+};
+
+struct State {
+  Real time = 0;
+  long long step = 0;
+  std::vector<BodyState> bodies;
+};
+
+// The constant inertial data an integrator needs, in body axes about the centre of mass.
+struct RigidInertia {
+  Real mass = 1;
+  Mat3 inertia = Mat3::Identity();      // A of eq. 4-7
+  Mat3 inertia_inv = Mat3::Identity();  // A^-1, the paper's A-tilde
+};
+
+}  // namespace tem

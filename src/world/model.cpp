@@ -1,0 +1,91 @@
+// Building the Model from a SceneDef: blocks and their elements, each body's mass properties
+// (eqs. 4-7 with the erratum of eq. 7), walls; and the initial State.
+#include "world/model.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "geometry/shape_blocks.hpp"
+#include "mass/mass_properties.hpp"
+
+namespace tem {
+namespace {
+
+std::string with_label(const std::string& label, const std::string& text) {
+  return label.empty() ? text : label + ": " + text;
+}
+
+Body build_body(const BodyDef& def, Model& model) {
+  if (!(def.density > 0) || !std::isfinite(def.density))
+    throw SceneError(def.path + ".density", "must be a positive number");
+  Body body;
+  body.name = def.name;
+  body.density = def.density;
+  body.fixed = def.fixed;
+
+  std::vector<PlacedMass> parts;
+  for (PlacedPolyhedron& placed : shape_polyhedra(def.shape)) {
+    try {
+      model.blocks.emplace_back(placed.polyhedron);
+    } catch (const GeometryError& e) {
+      throw SceneError(placed.path, with_label(placed.label, e.what()));
+    }
+    const Block& block = model.blocks.back();
+    if (!block.convex()) {
+      std::ostringstream w;
+      w << placed.path << ": " << with_label(placed.label, "")
+        << "the block is not convex (a node lies " << block.nonconvexity()
+        << " outside a face plane); accepted because allow_nonconvex is set, but contacts on "
+           "its re-entrant side can be reported where there is no body (paper §2.2)";
+      model.warnings.push_back(w.str());
+    }
+    const Vec3 centre = placed.rotation * block.centroid_in_input() + placed.position;
+    parts.push_back({block_mass_properties(block, def.density), placed.rotation, centre});
+    body.blocks.push_back(
+        {static_cast<int>(model.blocks.size() - 1), placed.rotation, centre, placed.path});
+  }
+
+  const MassProperties total = combine(parts);
+  for (BlockInstance& b : body.blocks) b.offset -= total.center;
+  body.origin_offset = -total.center;
+  body.volume = total.volume;
+  body.inertia.mass = total.mass;
+  body.inertia.inertia = inertia_from_second_moment(total.second_moment);
+  body.inertia.inertia_inv = body.inertia.inertia.inverse();
+  return body;
+}
+
+}  // namespace
+
+Model build_model(const SceneDef& scene) {
+  Model model;
+  model.scene = scene;
+  if (scene.container) {
+    const ContainerDef& c = *scene.container;
+    for (int axis = 0; axis < 3; ++axis) {
+      const Vec3 n = Vec3::Unit(axis);
+      model.walls.push_back({c.min, n});
+      model.walls.push_back({c.max, -n});
+    }
+  }
+  for (const WallDef& w : scene.walls) model.walls.push_back({w.point, w.normal.normalized()});
+  for (const BodyDef& def : scene.bodies) model.bodies.push_back(build_body(def, model));
+  return model;
+}
+
+State initial_state(const Model& model) {
+  State state;
+  for (size_t i = 0; i < model.bodies.size(); ++i) {
+    const BodyDef& def = model.scene.bodies[i];
+    const Body& body = model.bodies[i];
+    BodyState s;
+    s.g = def.rotation;
+    s.x = def.position - def.rotation * body.origin_offset;
+    s.v = def.velocity;
+    s.omega = def.rotation.transpose() * def.angular_velocity;
+    state.bodies.push_back(s);
+  }
+  return state;
+}
+
+}  // namespace tem

@@ -1,0 +1,56 @@
+// The Model: everything about a simulation that never changes after loading (shapes, blocks,
+// elements, mass properties, walls, settings), built from a SceneDef. The State (dynamics/
+// body_state.hpp) holds what a step changes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "dynamics/body_state.hpp"
+#include "geometry/block.hpp"
+#include "tem/scene_def.hpp"
+
+namespace tem {
+
+// One block placed in a body: x_body = rotation * x_block + offset, body frame origin at the
+// body's centre of mass (B^c and t^c of eq. 7).
+struct BlockInstance {
+  int block;  // index into Model::blocks
+  Mat3 rotation;
+  Vec3 offset;
+  std::string path;  // JSON path of the shape that made it
+};
+
+struct Body {
+  std::string name;
+  Real density = 1;
+  Real volume = 0;
+  RigidInertia inertia;  // mass, A and A^-1 in body axes about the centre of mass
+  std::vector<BlockInstance> blocks;
+  // Where the scene's body-frame origin lies in the body frame (the centre of mass is the
+  // origin here): the scene's `position` places that point.
+  Vec3 origin_offset = Vec3::Zero();
+  bool fixed = false;
+};
+
+struct Wall {
+  Vec3 point;
+  Vec3 normal;  // unit, into the space where bodies live
+};
+
+struct Model {
+  SceneDef scene;  // the definitions it was built from, defaults filled in
+  std::vector<Block> blocks;
+  std::vector<Body> bodies;
+  std::vector<Wall> walls;            // the container's six inner faces, then the scene's `walls`
+  std::vector<std::string> warnings;  // accepted defects, e.g. a non-convex block allowed
+};
+
+// Builds blocks, elements and mass properties. Throws SceneError naming the JSON path of the
+// shape or body at fault.
+Model build_model(const SceneDef& scene);
+
+// The state at time 0: the scene's poses and velocities, centres of mass in world space.
+State initial_state(const Model& model);
+
+}  // namespace tem
