@@ -99,12 +99,16 @@ struct SceneDef {
 // A problem in a scene that names where: `path` is the JSON path (e.g. "bodies[1].shape.radius").
 class SceneError : public std::runtime_error {
  public:
-  SceneError(std::string path, const std::string& reason)
-      : std::runtime_error(path + ": " + reason), path_(std::move(path)) {}
+  SceneError(std::string path, std::string reason)
+      : std::runtime_error(path + ": " + reason),
+        path_(std::move(path)),
+        reason_(std::move(reason)) {}
   const std::string& path() const { return path_; }
+  const std::string& reason() const { return reason_; }
 
  private:
   std::string path_;
+  std::string reason_;
 };
 
 // Rotation matrices of the scene's orientation conventions.

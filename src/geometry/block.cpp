@@ -161,8 +161,7 @@ Block::Block(const PolyhedronDef& def) {
   if (nonconvexity_ > 0 && !def.allow_nonconvex)
     throw GeometryError("the block is not convex: node " + std::to_string(worst_node) + " lies " +
                         std::to_string(nonconvexity_) + " outside the plane of polygon " +
-                        std::to_string(worst_poly) +
-                        "; split the body into convex blocks (a compound)");
+                        std::to_string(worst_poly));
 
   // Faces: fan triangles of each convex polygon.
   for (size_t f = 0; f < polygons_.size(); ++f) {

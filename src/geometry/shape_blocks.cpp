@@ -7,8 +7,9 @@ namespace {
 
 void collect(const ShapeDef& shape, const Mat3& rotation, const Vec3& position,
              std::vector<PlacedPolyhedron>& out) {
-  auto place = [&](PolyhedronDef def, std::string label) {
-    out.push_back({std::move(def), rotation, position, shape.path, std::move(label)});
+  auto place = [&](PolyhedronDef def, std::string label, std::string advice = "") {
+    out.push_back(
+        {std::move(def), rotation, position, shape.path, std::move(label), std::move(advice)});
   };
   switch (shape.type) {
     case ShapeType::prism:
@@ -24,9 +25,16 @@ void collect(const ShapeDef& shape, const Mat3& rotation, const Vec3& position,
                          "must divide segments (" + std::to_string(shape.segments) + ")");
       auto parts = polygonal_ring(shape.segments, shape.sides, shape.radius, shape.section_radius,
                                   blocks, shape.axis, shape.allow_nonconvex);
+      // A block of several segments bends inward: not convex (method.md §1).
+      const std::string advice =
+          blocks == shape.segments
+              ? ""
+              : "a ring block of several segments is not convex; use one block per segment "
+                "(blocks = segments, the default) or set allow_nonconvex to accept it as the "
+                "paper did";
       for (size_t i = 0; i < parts.size(); ++i)
         place(std::move(parts[i]),
-              "block " + std::to_string(i + 1) + " of " + std::to_string(parts.size()));
+              "block " + std::to_string(i + 1) + " of " + std::to_string(parts.size()), advice);
       break;
     }
     case ShapeType::convex:

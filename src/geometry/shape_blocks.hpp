@@ -14,8 +14,9 @@ struct PlacedPolyhedron {
   PolyhedronDef polyhedron;
   Mat3 rotation;  // x_shape = rotation * x_polyhedron + position
   Vec3 position;
-  std::string path;   // JSON path of the shape that made it
-  std::string label;  // which block of that shape, for messages ("block 3 of 8"), or empty
+  std::string path;    // JSON path of the shape that made it
+  std::string label;   // which block of that shape, for messages ("block 3 of 8"), or empty
+  std::string advice;  // what to change when this block is rejected, or empty
 };
 
 // Throws SceneError naming the shape's path for a shape whose points cannot make a block.

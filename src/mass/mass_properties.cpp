@@ -25,6 +25,8 @@ MassProperties combine(const std::vector<PlacedMass>& parts) {
     total.second_moment += p.rotation * p.mass.second_moment * p.rotation.transpose() +
                            p.mass.mass * t * t.transpose();
   }
+  // R S R^T is symmetric only up to round-off; the tensor is symmetric by definition.
+  total.second_moment = 0.5 * (total.second_moment + total.second_moment.transpose()).eval();
   return total;
 }
 

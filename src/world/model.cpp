@@ -2,7 +2,9 @@
 // (eqs. 4-7 with the erratum of eq. 7), walls; and the initial State.
 #include "world/model.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 #include "geometry/shape_blocks.hpp"
@@ -24,25 +26,30 @@ Body build_body(const BodyDef& def, Model& model) {
   body.fixed = def.fixed;
 
   std::vector<PlacedMass> parts;
+  std::map<std::string, std::vector<Real>> nonconvex;  // shape path -> how far each sticks out
   for (PlacedPolyhedron& placed : shape_polyhedra(def.shape)) {
     try {
       model.blocks.emplace_back(placed.polyhedron);
     } catch (const GeometryError& e) {
-      throw SceneError(placed.path, with_label(placed.label, e.what()));
+      std::string reason = with_label(placed.label, e.what());
+      if (!placed.advice.empty()) reason += "; " + placed.advice;
+      throw SceneError(placed.path, reason);
     }
     const Block& block = model.blocks.back();
-    if (!block.convex()) {
-      std::ostringstream w;
-      w << placed.path << ": " << with_label(placed.label, "")
-        << "the block is not convex (a node lies " << block.nonconvexity()
-        << " outside a face plane); accepted because allow_nonconvex is set, but contacts on "
-           "its re-entrant side can be reported where there is no body (paper §2.2)";
-      model.warnings.push_back(w.str());
-    }
+    if (!block.convex()) nonconvex[placed.path].push_back(block.nonconvexity());
     const Vec3 centre = placed.rotation * block.centroid_in_input() + placed.position;
     parts.push_back({block_mass_properties(block, def.density), placed.rotation, centre});
     body.blocks.push_back(
         {static_cast<int>(model.blocks.size() - 1), placed.rotation, centre, placed.path});
+  }
+
+  for (const auto& [path, amounts] : nonconvex) {
+    std::ostringstream w;
+    w << path << ": " << amounts.size() << " of its blocks " << (amounts.size() == 1 ? "is" : "are")
+      << " not convex (a node lies up to " << *std::max_element(amounts.begin(), amounts.end())
+      << " outside a face plane); accepted because allow_nonconvex is set, but contacts on "
+         "their re-entrant side can be reported where there is no body (paper §2.2)";
+    model.warnings.push_back(w.str());
   }
 
   const MassProperties total = combine(parts);

@@ -1,0 +1,32 @@
+// The commands of the `tem` program, one file each; main.cpp only parses the command line.
+// Every command returns the process's exit status and prints its own messages: results to
+// stdout, problems and warnings to stderr, each naming the scene file.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "world/model.hpp"
+
+namespace tem::cli {
+
+// Exit statuses shared by all commands.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitBadInput = 1;  // the scene has problems, or the file is missing
+inline constexpr int kExitUsage = 2;     // the command line itself is wrong
+
+// Reads the scene and builds its model. On failure prints every problem found, one per line
+// ("FILE: PATH: reason"), to stderr and returns nothing. `problem_count`, when given, receives
+// the number of problems printed.
+std::optional<Model> load_model(const std::string& scene_file, int* problem_count = nullptr);
+
+// Prints the model's warnings ("FILE: warning: ...") to stderr.
+void print_warnings(const std::string& scene_file, const Model& model);
+
+// `tem info SCENE [--json]`: each body's volume, mass, centre of mass and inertia.
+int info_command(const std::string& scene_file, bool json);
+
+// `tem check SCENE`: every problem of the scene, or a one-line summary when there is none.
+int check_command(const std::string& scene_file);
+
+}  // namespace tem::cli

@@ -1,0 +1,63 @@
+// The `tem` program: parses the command line (CLI11) and hands over to one command
+// (commands.hpp). Nothing may escape main: a bug shows as a message and a non-zero status, not
+// as an abort.
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+#include <string>
+
+#include "commands.hpp"
+
+namespace {
+
+int run(int argc, char** argv) {
+  using namespace tem::cli;
+  CLI::App app{"TEM: rigid bodies of arbitrary shape built from tetrahedral elements, in contact.",
+               "tem"};
+  app.set_version_flag("--version", std::string("tem ") + TEM_VERSION);
+  app.require_subcommand(1);
+  app.footer("Run 'tem COMMAND --help' for the options of one command.");
+
+  std::string scene_file;
+  bool json = false;
+  CLI::App* info = app.add_subcommand(
+      "info",
+      "Print each body's volume, mass, centre of mass and inertia (world axes, initial pose).");
+  info->add_option("scene", scene_file, "Scene file (JSON)")->required();
+  info->add_flag("--json", json, "Print one JSON object with full-precision numbers");
+
+  CLI::App* check =
+      app.add_subcommand("check", "Validate a scene file; print every problem found.");
+  check->add_option("scene", scene_file, "Scene file (JSON)")->required();
+
+  CLI::App* help = app.add_subcommand("help", "Print this help.");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version arrive here too, with exit code 0.
+    const int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitUsage;
+  }
+  if (*help) {
+    // The formatter directly: app.help() would describe the selected subcommand, `help` itself.
+    std::cout << app.get_formatter()->make_help(&app, "tem", CLI::AppFormatMode::Normal);
+    return kExitOk;
+  }
+  if (*info) return info_command(scene_file, json);
+  if (*check) return check_command(scene_file);
+  return kExitUsage;  // unreachable: require_subcommand(1)
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "tem: internal error: " << e.what() << "\n";
+  } catch (...) {
+    std::cerr << "tem: internal error (unknown exception)\n";
+  }
+  return tem::cli::kExitBadInput;
+}

@@ -1,0 +1,602 @@
+// JSON scene file -> SceneDef, collecting every problem with its JSON path.
+//
+// Reading one JSON value of each kind with its path, and the wording of generic messages, is
+// json_reader.hpp's job; this file knows the scene format. Layout: rotations from degrees; then
+// one function per object of the scene format (scene, contact, container, walls, body, shape,
+// output), each checking its keys against the list of allowed keys first so that typos are
+// caught everywhere. Cross-field checks (a ring's section radius against its radius, say) run
+// only when both fields were valid on their own, so one mistake yields one message.
+#include "io/scene_reader.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string_view>
+#include <utility>
+
+#include "io/json_reader.hpp"
+
+namespace tem {
+namespace {
+
+using json::Bound;
+using json::child;
+using json::closest;
+using json::contains;
+using json::describe;
+using json::element;
+using json::format_number;
+using json::in_quotes;
+using json::join_quoted;
+using json::Json;
+using json::KeyList;
+using json::Reader;
+
+// Limits that keep a typo from asking for a gigantic mesh or a run that never ends.
+constexpr int kMaxPolygonSides = 1000;
+constexpr double kMaxSteps = 1e9;
+constexpr int kMaxCompoundDepth = 8;
+constexpr Real kQuaternionNormTolerance = 1e-6;
+
+// Problems found by the JSON layer become SceneProblems, in the order they are found.
+json::ProblemSink into(std::vector<SceneProblem>* problems) {
+  return [problems](std::string path, std::string message) {
+    problems->push_back({std::move(path), std::move(message)});
+  };
+}
+
+// ---- Rotations from degrees ----------------------------------------------------------------
+
+// cos and sin of an angle in degrees, exact at multiples of 90 degrees: cos(pi/2) in floating
+// point is 6e-17, which would tilt a box meant to rest flat.
+std::pair<Real, Real> cos_sin_deg(Real degrees) {
+  const Real turns = std::fmod(degrees, 360.0);
+  const Real quarter = turns / 90.0;
+  if (quarter == std::floor(quarter)) {
+    static constexpr Real kCos[] = {1, 0, -1, 0}, kSin[] = {0, 1, 0, -1};
+    const int k = (static_cast<int>(quarter) % 4 + 4) % 4;
+    return {kCos[k], kSin[k]};
+  }
+  const Real radians = turns * (M_PI / 180.0);
+  return {std::cos(radians), std::sin(radians)};
+}
+
+Mat3 rotation_x_cs(Real c, Real s) {
+  Mat3 r;
+  r << 1, 0, 0,  //
+      0, c, -s,  //
+      0, s, c;
+  return r;
+}
+
+Mat3 rotation_z_cs(Real c, Real s) {
+  Mat3 r;
+  r << c, -s, 0,  //
+      s, c, 0,    //
+      0, 0, 1;
+  return r;
+}
+
+// ---- Scene sections ----------------------------------------------------------------------
+
+const KeyList kSceneKeys = {"gravity",   "time_step", "duration", "integrator", "contact",
+                            "container", "walls",     "bodies",   "output"};
+const KeyList kContactKeys = {"model", "friction", "restitution", "stiffness", "damping"};
+const KeyList kContainerKeys = {"min", "max"};
+const KeyList kWallKeys = {"point", "normal"};
+const KeyList kOutputKeys = {"interval", "checkpoint_interval", "paraview"};
+const KeyList kBodyKeys = {"name",          "shape",      "density",  "position",
+                           "euler_zxz_deg", "quaternion", "velocity", "angular_velocity",
+                           "fixed"};
+const KeyList kPoseKeys = {"position", "euler_zxz_deg", "quaternion"};
+
+const std::vector<std::pair<std::string_view, ShapeType>> kShapeTypes = {
+    {"prism", ShapeType::prism},
+    {"ring", ShapeType::ring},
+    {"box", ShapeType::box},
+    {"convex", ShapeType::convex},
+    {"compound", ShapeType::compound}};
+
+std::string_view shape_type_name(ShapeType type) {
+  for (const auto& [name, value] : kShapeTypes) {
+    if (value == type) return name;
+  }
+  return "?";
+}
+
+// Keys a shape of each type takes, besides `type` (and the pose keys of a compound's part).
+const KeyList& shape_keys(ShapeType type) {
+  static const std::map<ShapeType, KeyList> keys = {
+      {ShapeType::prism, {"sides", "radius", "height", "axis"}},
+      {ShapeType::ring,
+       {"segments", "sides", "radius", "section_radius", "blocks", "axis", "allow_nonconvex"}},
+      {ShapeType::box, {"size"}},
+      {ShapeType::convex, {"points"}},
+      {ShapeType::compound, {"blocks"}}};
+  return keys.at(type);
+}
+
+class SceneReader {
+ public:
+  explicit SceneReader(std::vector<SceneProblem>* problems) : r_(into(problems)) {}
+
+  void read_scene(const Json& root, SceneDef* scene) {
+    if (!r_.object(root, "")) return;
+    r_.check_keys(root, "", kSceneKeys);
+    read_gravity(root, scene);
+    const bool step_ok = r_.read_number(root, "", "time_step", &scene->time_step, Bound::positive);
+    const bool duration_ok =
+        r_.read_number(root, "", "duration", &scene->duration, Bound::positive);
+    // Only judge the pair when neither was bad (a default standing in for a bad value would
+    // give a second, misleading message).
+    const bool step_bad = Reader::get(root, "time_step") && !step_ok;
+    const bool duration_bad = Reader::get(root, "duration") && !duration_ok;
+    if (!step_bad && !duration_bad) check_step_count(*scene);
+    if (const Json* j = Reader::get(root, "integrator")) {
+      if (auto kind = r_.choice<IntegratorKind>(
+              *j, "integrator",
+              {{"default", IntegratorKind::default_}, {"paper", IntegratorKind::paper}})) {
+        scene->integrator = *kind;
+      }
+    }
+    if (const Json* j = Reader::get(root, "contact")) read_contact(*j, "contact", &scene->contact);
+    if (const Json* j = Reader::get(root, "container")) {
+      ContainerDef container;
+      if (read_container(*j, "container", &container)) scene->container = container;
+    }
+    if (const Json* j = Reader::get(root, "walls")) read_walls(*j, "walls", &scene->walls);
+    if (const Json* j = r_.need(root, "", "bodies")) read_bodies(*j, "bodies", &scene->bodies);
+    if (const Json* j = Reader::get(root, "output")) read_output(*j, "output", &scene->output);
+  }
+
+ private:
+  void read_gravity(const Json& root, SceneDef* scene) {
+    const Json* j = Reader::get(root, "gravity");
+    if (!j) return;
+    if (j->is_string()) {
+      const auto& name = j->get_ref<const std::string&>();
+      if (name == "earth") {
+        scene->gravity = Vec3(0, 0, -earth_gravity_cgs);
+      } else if (name == "paper") {
+        scene->gravity = Vec3(0, 0, -paper_gravity_cgs);
+      } else {
+        std::string reason =
+            "must be a list of 3 numbers, \"earth\" or \"paper\", got " + in_quotes(name);
+        if (auto guess = closest(name, {"earth", "paper"})) {
+          reason += " (did you mean \"" + std::string(*guess) + "\"?)";
+        }
+        r_.fail("gravity", reason);
+      }
+      return;
+    }
+    if (!j->is_array()) {
+      r_.fail("gravity",
+              "must be a list of 3 numbers, \"earth\" or \"paper\", got " + describe(*j));
+      return;
+    }
+    if (auto g = r_.vec3(*j, "gravity")) scene->gravity = *g;
+  }
+
+  // A typo in duration or time_step (1e-10 for 1e-5) must not start a run of years.
+  void check_step_count(const SceneDef& scene) {
+    const double steps = scene.duration / scene.time_step;
+    if (steps > kMaxSteps) {
+      r_.fail("duration", "duration " + format_number(scene.duration) + " at time_step " +
+                              format_number(scene.time_step) + " needs " + format_number(steps) +
+                              " steps; at most 1e9 are allowed");
+    }
+  }
+
+  void read_contact(const Json& j, const std::string& path, ContactDef* contact) {
+    if (!r_.object(j, path)) return;
+    r_.check_keys(j, path, kContactKeys);
+    if (const Json* m = Reader::get(j, "model")) {
+      if (auto model = r_.choice<ContactModel>(*m, child(path, "model"),
+                                               {{"semm", ContactModel::semm},
+                                                {"semm-paper", ContactModel::semm_paper},
+                                                {"penalty", ContactModel::penalty}})) {
+        contact->model = *model;
+      }
+    }
+    r_.read_number(j, path, "friction", &contact->friction, Bound::non_negative);
+    r_.read_number(j, path, "restitution", &contact->restitution, Bound::unit_interval);
+    const Json* stiffness = Reader::get(j, "stiffness");
+    const bool stiffness_ok =
+        r_.read_number(j, path, "stiffness", &contact->stiffness, Bound::non_negative);
+    r_.read_number(j, path, "damping", &contact->damping, Bound::non_negative);
+    // The penalty model has no spring without a stiffness; the others ignore it.
+    if (contact->model == ContactModel::penalty) {
+      if (!stiffness) {
+        r_.fail(path, "missing required key 'stiffness' (the \"penalty\" model needs it)");
+      } else if (stiffness_ok && !(contact->stiffness > 0)) {
+        r_.fail(child(path, "stiffness"),
+                "must be a positive number for the \"penalty\" model, got " +
+                    format_number(contact->stiffness));
+      }
+    }
+  }
+
+  bool read_container(const Json& j, const std::string& path, ContainerDef* container) {
+    if (!r_.object(j, path)) return false;
+    r_.check_keys(j, path, kContainerKeys);
+    const bool min_ok = r_.read_vec3(j, path, "min", &container->min, Bound::any, true);
+    const bool max_ok = r_.read_vec3(j, path, "max", &container->max, Bound::any, true);
+    if (!min_ok || !max_ok) return false;
+    static constexpr const char* kAxisNames[] = {"x", "y", "z"};
+    for (int k = 0; k < 3; ++k) {
+      if (!(container->min[k] < container->max[k])) {
+        r_.fail(child(path, "max"), std::string("must exceed min in every component, but ") +
+                                        kAxisNames[k] + " has max " +
+                                        format_number(container->max[k]) + " and min " +
+                                        format_number(container->min[k]));
+        return false;
+      }
+    }
+    return true;
+  }
+
+  void read_walls(const Json& j, const std::string& path, std::vector<WallDef>* walls) {
+    if (!j.is_array()) {
+      r_.fail(path,
+              "must be a list of walls ({\"point\": [..], \"normal\": [..]}), got " + describe(j));
+      return;
+    }
+    for (std::size_t i = 0; i < j.size(); ++i) {
+      const std::string wpath = element(path, i);
+      if (!r_.object(j[i], wpath)) continue;
+      r_.check_keys(j[i], wpath, kWallKeys);
+      WallDef wall;
+      const bool point_ok = r_.read_vec3(j[i], wpath, "point", &wall.point, Bound::any, true);
+      bool normal_ok = r_.read_vec3(j[i], wpath, "normal", &wall.normal, Bound::any, true);
+      if (normal_ok) {
+        const Real length = wall.normal.stableNorm();
+        if (!(length > 0) || !std::isfinite(length)) {
+          r_.fail(child(wpath, "normal"), "must not be zero: it says which side bodies are on");
+          normal_ok = false;
+        } else {
+          wall.normal /= length;
+        }
+      }
+      if (point_ok && normal_ok) walls->push_back(wall);
+    }
+  }
+
+  void read_output(const Json& j, const std::string& path, OutputDef* output) {
+    if (!r_.object(j, path)) return;
+    r_.check_keys(j, path, kOutputKeys);
+    r_.read_number(j, path, "interval", &output->interval, Bound::positive);
+    r_.read_number(j, path, "checkpoint_interval", &output->checkpoint_interval,
+                   Bound::non_negative);
+    r_.read_bool(j, path, "paraview", &output->paraview);
+  }
+
+  void read_bodies(const Json& j, const std::string& path, std::vector<BodyDef>* bodies) {
+    if (!j.is_array()) {
+      r_.fail(path, "must be a list of bodies, got " + describe(j));
+      return;
+    }
+    if (j.empty()) {
+      r_.fail(path, "must list at least one body, got an empty list");
+      return;
+    }
+    std::map<std::string, std::size_t> first_index;  // name -> first body that uses it
+    for (std::size_t i = 0; i < j.size(); ++i) {
+      BodyDef body;
+      body.path = element(path, i);
+      body.shape.path = child(body.path, "shape");
+      const bool name_ok = read_body(j[i], &body);
+      if (name_ok) {
+        const auto [it, fresh] = first_index.emplace(body.name, i);
+        if (!fresh) {
+          r_.fail(child(body.path, "name"), "name " + in_quotes(body.name) + " is used by both " +
+                                                element(path, it->second) + " and " + body.path +
+                                                "; body names must be unique");
+        }
+      }
+      bodies->push_back(std::move(body));
+    }
+  }
+
+  // Returns whether the body has a valid name (for the uniqueness check).
+  bool read_body(const Json& j, BodyDef* body) {
+    const std::string& path = body->path;
+    if (!r_.object(j, path)) return false;
+    r_.check_keys(j, path, kBodyKeys);
+    bool name_ok = false;
+    if (const Json* n = r_.need(j, path, "name")) name_ok = read_name(*n, path, &body->name);
+    if (const Json* s = r_.need(j, path, "shape")) {
+      read_shape(*s, body->shape.path, &body->shape, /*is_part=*/false, 0);
+    }
+    r_.read_number(j, path, "density", &body->density, Bound::positive);
+    r_.read_vec3(j, path, "position", &body->position, Bound::any, true);
+    read_orientation(j, path, &body->rotation);
+    r_.read_vec3(j, path, "velocity", &body->velocity);
+    r_.read_vec3(j, path, "angular_velocity", &body->angular_velocity);
+    r_.read_bool(j, path, "fixed", &body->fixed);
+    return name_ok;
+  }
+
+  // Names go into CSV columns and contact rows, where "wall" already names the walls.
+  bool read_name(const Json& j, const std::string& body_path, std::string* name) {
+    const std::string path = child(body_path, "name");
+    const auto s = r_.string(j, path);
+    if (!s) return false;
+    if (s->empty()) {
+      r_.fail(path, "must not be empty");
+      return false;
+    }
+    const bool bad_char = std::any_of(s->begin(), s->end(), [](char c) {
+      return c == ',' || c == '"' || std::iscntrl(static_cast<unsigned char>(c));
+    });
+    if (bad_char) {
+      r_.fail(path,
+              "must not contain commas, quotes or control characters (it becomes a CSV "
+              "field), got " +
+                  in_quotes(*s));
+      return false;
+    }
+    if (*s == "wall") {
+      r_.fail(path, "\"wall\" is reserved: contacts.csv uses it for walls");
+      return false;
+    }
+    *name = *s;
+    return true;
+  }
+
+  void read_shape(const Json& j, const std::string& path, ShapeDef* shape, bool is_part,
+                  int depth) {
+    shape->path = path;
+    if (!r_.object(j, path)) return;
+    std::optional<ShapeType> type;
+    if (const Json* t = r_.need(j, path, "type")) {
+      type = r_.choice(*t, child(path, "type"), kShapeTypes);
+    }
+
+    // Keys: those of this type, or of any type when the type is unknown.
+    KeyList allowed = {"type"};
+    for (const auto& [name, value] : kShapeTypes) {
+      if (type && value != *type) continue;
+      for (std::string_view key : shape_keys(value)) {
+        if (!contains(allowed, key)) allowed.push_back(key);
+      }
+    }
+    if (is_part) allowed.insert(allowed.end(), kPoseKeys.begin(), kPoseKeys.end());
+    r_.check_keys(j, path, allowed, [&](std::string_view key) -> std::string {
+      if (!is_part && contains(kPoseKeys, key)) {
+        return "unknown key '" + std::string(key) +
+               "' (a body's pose goes on the body, not on its shape; only the blocks of a "
+               "compound have their own)";
+      }
+      if (!type) return "";
+      for (const auto& [name, value] : kShapeTypes) {
+        if (value != *type && contains(shape_keys(value), key)) {
+          return "key '" + std::string(key) + "' does not apply to a " +
+                 std::string(shape_type_name(*type)) + " shape (it takes " +
+                 join_quoted(shape_keys(*type)) + ")";
+        }
+      }
+      return "";
+    });
+    if (!type) return;
+    shape->type = *type;
+
+    if (is_part) {
+      r_.read_vec3(j, path, "position", &shape->position);
+      read_orientation(j, path, &shape->rotation);
+    }
+    switch (*type) {
+      case ShapeType::prism:
+        r_.read_int(j, path, "sides", &shape->sides, 3, kMaxPolygonSides, true);
+        r_.read_number(j, path, "radius", &shape->radius, Bound::positive, true);
+        r_.read_number(j, path, "height", &shape->height, Bound::positive, true);
+        read_axis(j, path, &shape->axis);
+        break;
+      case ShapeType::ring:
+        read_ring(j, path, shape);
+        break;
+      case ShapeType::box:
+        r_.read_vec3(j, path, "size", &shape->size, Bound::positive, true);
+        break;
+      case ShapeType::convex:
+        read_points(j, path, shape);
+        break;
+      case ShapeType::compound:
+        read_compound(j, path, shape, depth);
+        break;
+    }
+  }
+
+  void read_ring(const Json& j, const std::string& path, ShapeDef* shape) {
+    // `segments` may be left at its default; only a bad value stops the blocks check below.
+    const bool segments_ok =
+        r_.read_int(j, path, "segments", &shape->segments, 3, kMaxPolygonSides) ||
+        !Reader::get(j, "segments");
+    r_.read_int(j, path, "sides", &shape->sides, 3, kMaxPolygonSides);
+    const bool radius_ok = r_.read_number(j, path, "radius", &shape->radius, Bound::positive, true);
+    const bool section_ok =
+        r_.read_number(j, path, "section_radius", &shape->section_radius, Bound::positive, true);
+    if (radius_ok && section_ok && !(shape->section_radius < shape->radius)) {
+      r_.fail(child(path, "section_radius"),
+              "must be smaller than radius (" + format_number(shape->radius) + "), got " +
+                  format_number(shape->section_radius) + " (the ring would have no hole)");
+    }
+    // Default: one block per segment, which keeps every block convex.
+    shape->blocks = shape->segments;
+    if (r_.read_int(j, path, "blocks", &shape->blocks, 1, kMaxPolygonSides) && segments_ok &&
+        shape->segments % shape->blocks != 0) {
+      r_.fail(child(path, "blocks"), "must divide segments (" + std::to_string(shape->segments) +
+                                         ") evenly, got " + std::to_string(shape->blocks));
+    }
+    read_axis(j, path, &shape->axis);
+    r_.read_bool(j, path, "allow_nonconvex", &shape->allow_nonconvex);
+  }
+
+  void read_points(const Json& j, const std::string& path, ShapeDef* shape) {
+    const Json* p = r_.need(j, path, "points");
+    if (!p) return;
+    const std::string ppath = child(path, "points");
+    if (!p->is_array() || p->size() < 4) {
+      r_.fail(ppath, "must be a list of at least 4 points ([x, y, z] each), got " + describe(*p));
+      return;
+    }
+    std::vector<Vec3> points;
+    bool good = true;
+    for (std::size_t i = 0; i < p->size(); ++i) {
+      const auto v = r_.vec3((*p)[i], element(ppath, i));
+      good = good && v.has_value();
+      if (v) points.push_back(*v);
+    }
+    if (good) shape->points = std::move(points);
+  }
+
+  void read_compound(const Json& j, const std::string& path, ShapeDef* shape, int depth) {
+    const Json* b = r_.need(j, path, "blocks");
+    if (!b) return;
+    const std::string bpath = child(path, "blocks");
+    if (!b->is_array() || b->empty()) {
+      r_.fail(bpath, "must be a non-empty list of shapes, got " + describe(*b));
+      return;
+    }
+    if (depth >= kMaxCompoundDepth) {
+      r_.fail(bpath, "compounds nest too deeply (at most " + std::to_string(kMaxCompoundDepth) +
+                         " levels)");
+      return;
+    }
+    for (std::size_t k = 0; k < b->size(); ++k) {
+      ShapeDef part;
+      read_shape((*b)[k], element(bpath, k), &part, /*is_part=*/true, depth + 1);
+      shape->parts.push_back(std::move(part));
+    }
+  }
+
+  void read_axis(const Json& obj, const std::string& path, Axis* out) {
+    if (const Json* j = Reader::get(obj, "axis")) {
+      if (auto a = r_.choice<Axis>(*j, child(path, "axis"),
+                                   {{"x", Axis::x}, {"y", Axis::y}, {"z", Axis::z}})) {
+        *out = *a;
+      }
+    }
+  }
+
+  // euler_zxz_deg or quaternion (or neither: identity) of a body or a compound's part.
+  void read_orientation(const Json& obj, const std::string& path, Mat3* out) {
+    const Json* euler = Reader::get(obj, "euler_zxz_deg");
+    const Json* quaternion = Reader::get(obj, "quaternion");
+    if (euler && quaternion) {
+      r_.fail(path, "gives both 'euler_zxz_deg' and 'quaternion'; give one orientation only");
+      return;
+    }
+    if (euler) {
+      if (auto angles = r_.vec3(*euler, child(path, "euler_zxz_deg"))) {
+        *out = rotation_from_euler_zxz_deg(*angles);
+      }
+    } else if (quaternion) {
+      const std::string qpath = child(path, "quaternion");
+      const auto q = r_.numbers(*quaternion, qpath, 4, Bound::any);
+      if (!q) return;
+      const Real norm =
+          std::sqrt((*q)[0] * (*q)[0] + (*q)[1] * (*q)[1] + (*q)[2] * (*q)[2] + (*q)[3] * (*q)[3]);
+      if (!(std::abs(norm - 1) <= kQuaternionNormTolerance)) {
+        r_.fail(qpath, "must be a unit quaternion [w, x, y, z], but its norm is " +
+                           format_number(norm) +
+                           " (it must be within 1e-6 of 1; divide by the norm)");
+        return;
+      }
+      *out = rotation_from_quaternion((*q)[0], (*q)[1], (*q)[2], (*q)[3]);
+    }
+  }
+
+  Reader r_;
+};
+
+}  // namespace
+
+Mat3 rotation_from_euler_zxz_deg(const Vec3& angles_deg) {
+  const auto [c1, s1] = cos_sin_deg(angles_deg[0]);
+  const auto [c2, s2] = cos_sin_deg(angles_deg[1]);
+  const auto [c3, s3] = cos_sin_deg(angles_deg[2]);
+  // g = Rz(phi) Rx(theta) Rz(psi), as euler_zxz() in scene_def.hpp.
+  return rotation_z_cs(c1, s1) * rotation_x_cs(c2, s2) * rotation_z_cs(c3, s3);
+}
+
+Mat3 rotation_from_quaternion(Real w, Real x, Real y, Real z) {
+  return Quat(w, x, y, z).normalized().toRotationMatrix();
+}
+
+SceneReadResult read_scene_text(const std::string& text, const std::string& source_name) {
+  SceneReadResult result;
+  result.scene.source = source_name;
+  auto& problems = result.problems;
+  try {
+    if (json::blank(text)) {
+      problems.push_back({"", "the file is empty (expected a JSON object: {...})"});
+      return result;
+    }
+    json::PathTracker tracker(into(&problems));
+    Json root;
+    try {
+      root = Json::parse(text, [&tracker](int depth, Json::parse_event_t event, Json& parsed) {
+        return tracker(depth, event, parsed);
+      });
+    } catch (const Json::parse_error& e) {
+      problems.push_back({"", json::syntax_message(text, e)});
+      return result;
+    } catch (const Json::out_of_range& e) {
+      // Thrown for a number beyond the range of a double, e.g. 1e400.
+      std::string reason = e.what();
+      const std::size_t quote = reason.find('\'');
+      const std::string number = quote == std::string::npos ? "" : " " + reason.substr(quote);
+      problems.push_back({tracker.pending_path(), "must be a finite number, got" + number +
+                                                      ", which is too large for a double"});
+      return result;
+    }
+    SceneReader(&problems).read_scene(root, &result.scene);
+  } catch (const std::exception& e) {
+    // Not expected; the promise is that bad input never throws, so report it as a problem.
+    problems.push_back({"", std::string("internal error while reading the scene: ") + e.what()});
+  }
+  return result;
+}
+
+SceneReadResult read_scene_file(const std::string& filename) {
+  std::error_code ec;
+  const std::filesystem::path path(filename);
+  std::string failure;
+  if (!std::filesystem::exists(path, ec)) {
+    failure = "no such file";
+  } else if (std::filesystem::is_directory(path, ec)) {
+    failure = "is a directory, not a scene file";
+  }
+  std::string text;
+  if (failure.empty()) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream buffer;
+    if (in) buffer << in.rdbuf();
+    if (!in || in.bad()) {
+      failure = std::string("cannot be read (") + std::strerror(errno) + ")";
+    } else {
+      text = std::move(buffer).str();
+    }
+  }
+  if (!failure.empty()) {
+    SceneReadResult result;
+    result.scene.source = filename;
+    result.problems.push_back({"", failure});
+    return result;
+  }
+  return read_scene_text(text, filename);
+}
+
+std::string format_problem(const std::string& source_name, const SceneProblem& problem) {
+  if (problem.path.empty()) return source_name + ": " + problem.message;
+  return source_name + ": " + problem.path + ": " + problem.message;
+}
+
+}  // namespace tem

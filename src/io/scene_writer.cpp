@@ -1,0 +1,219 @@
+// SceneDef -> JSON (see scene_writer.hpp). The inverse of scene_reader.cpp key by key; when a
+// key is added there, add it here too, or the round-trip test fails.
+#include "io/scene_writer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "io/scene_reader.hpp"
+
+namespace tem {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json vec3(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
+
+// [w, x, y, z] with w >= 0 (q and -q are the same rotation; one form keeps files comparable).
+Json quaternion(const Mat3& rotation) {
+  Quat q(rotation);
+  if (q.w() < 0) q.coeffs() = -q.coeffs();
+  return Json::array({q.w(), q.x(), q.y(), q.z()});
+}
+
+// z-x-z Euler angles in degrees of a rotation g = Rz(phi) Rx(theta) Rz(psi), theta in
+// [0, 180]; at theta = 0 or 180 only phi -/+ psi is defined and psi is taken as 0.
+Vec3 euler_zxz_deg_of(const Mat3& g) {
+  constexpr Real kDeg = 180.0 / M_PI;
+  const Real theta = std::acos(std::clamp(g(2, 2), Real(-1), Real(1)));
+  const Real sin_theta = std::hypot(g(0, 2), g(1, 2));
+  if (sin_theta < 1e-12) return Vec3(std::atan2(g(1, 0), g(0, 0)) * kDeg, theta * kDeg, 0);
+  return Vec3(std::atan2(g(0, 2), -g(1, 2)), theta, std::atan2(g(2, 0), g(2, 1))) * kDeg;
+}
+
+// The orientation keys for a rotation. A scene's rotations mostly come from Euler angles in
+// whole or decimal degrees; recovering those angles, when the shortest decimal form gives back
+// exactly the same matrix, makes the file readable ([10, 80, 10]) and the round trip exact.
+// Otherwise a quaternion, which comes back equal to rounding (about 1e-16).
+void write_orientation(const Mat3& rotation, Json* j) {
+  const Vec3 angles = euler_zxz_deg_of(rotation);
+  for (int digits = 0; digits <= 12; ++digits) {
+    const Real scale = std::pow(10.0, digits);
+    Vec3 rounded = (angles * scale).array().round() / scale;
+    rounded = rounded.unaryExpr([](Real a) { return a == 0 ? Real(0) : a; });  // no -0
+    if (rotation_from_euler_zxz_deg(rounded) == rotation) {
+      (*j)["euler_zxz_deg"] = Json::array({rounded.x(), rounded.y(), rounded.z()});
+      return;
+    }
+  }
+  (*j)["quaternion"] = quaternion(rotation);
+}
+
+const char* axis_name(Axis axis) {
+  switch (axis) {
+    case Axis::x:
+      return "x";
+    case Axis::y:
+      return "y";
+    case Axis::z:
+      return "z";
+  }
+  return "z";
+}
+
+const char* shape_type_name(ShapeType type) {
+  switch (type) {
+    case ShapeType::prism:
+      return "prism";
+    case ShapeType::ring:
+      return "ring";
+    case ShapeType::box:
+      return "box";
+    case ShapeType::convex:
+      return "convex";
+    case ShapeType::compound:
+      return "compound";
+  }
+  return "box";
+}
+
+const char* contact_model_name(ContactModel model) {
+  switch (model) {
+    case ContactModel::semm:
+      return "semm";
+    case ContactModel::semm_paper:
+      return "semm-paper";
+    case ContactModel::penalty:
+      return "penalty";
+  }
+  return "semm";
+}
+
+// Only the keys of the shape's own type; a compound's parts also get their pose.
+Json shape_to_json(const ShapeDef& shape, bool is_part) {
+  Json j;
+  j["type"] = shape_type_name(shape.type);
+  if (is_part) {
+    j["position"] = vec3(shape.position);
+    write_orientation(shape.rotation, &j);
+  }
+  switch (shape.type) {
+    case ShapeType::prism:
+      j["sides"] = shape.sides;
+      j["radius"] = shape.radius;
+      j["height"] = shape.height;
+      j["axis"] = axis_name(shape.axis);
+      break;
+    case ShapeType::ring:
+      j["segments"] = shape.segments;
+      j["sides"] = shape.sides;
+      j["radius"] = shape.radius;
+      j["section_radius"] = shape.section_radius;
+      // blocks = 0 in a def built in code means one block per segment; say so explicitly.
+      j["blocks"] = shape.blocks > 0 ? shape.blocks : shape.segments;
+      j["axis"] = axis_name(shape.axis);
+      j["allow_nonconvex"] = shape.allow_nonconvex;
+      break;
+    case ShapeType::box:
+      j["size"] = vec3(shape.size);
+      break;
+    case ShapeType::convex: {
+      Json points = Json::array();
+      for (const Vec3& p : shape.points) points.push_back(vec3(p));
+      j["points"] = std::move(points);
+      break;
+    }
+    case ShapeType::compound: {
+      Json blocks = Json::array();
+      for (const ShapeDef& part : shape.parts) blocks.push_back(shape_to_json(part, true));
+      j["blocks"] = std::move(blocks);
+      break;
+    }
+  }
+  return j;
+}
+
+Json body_to_json(const BodyDef& body) {
+  Json j;
+  j["name"] = body.name;
+  j["shape"] = shape_to_json(body.shape, false);
+  j["density"] = body.density;
+  j["position"] = vec3(body.position);
+  write_orientation(body.rotation, &j);
+  j["velocity"] = vec3(body.velocity);
+  j["angular_velocity"] = vec3(body.angular_velocity);
+  j["fixed"] = body.fixed;
+  return j;
+}
+
+// Like dump(2), but a list of plain values stays on one line: "position": [0.5, 0.5, 0.7]
+// reads better than one number per line.
+std::string indented(const Json& j, int depth) {
+  const bool is_list = j.is_array();
+  if (!j.is_structured() || j.empty()) return j.dump();
+  if (is_list &&
+      std::none_of(j.begin(), j.end(), [](const Json& e) { return e.is_structured(); })) {
+    std::string out = "[";
+    for (std::size_t i = 0; i < j.size(); ++i) out += (i ? ", " : "") + j[i].dump();
+    return out + "]";
+  }
+  const std::string inner(2 * (depth + 1), ' ');
+  std::string out = is_list ? "[\n" : "{\n";
+  bool first = true;
+  for (const auto& [key, value] : j.items()) {
+    out += first ? "" : ",\n";
+    first = false;
+    out += inner;
+    if (!is_list) out += Json(key).dump() + ": ";
+    out += indented(value, depth + 1);
+  }
+  return out + "\n" + std::string(2 * depth, ' ') + (is_list ? "]" : "}");
+}
+
+}  // namespace
+
+Json scene_to_json(const SceneDef& scene) {
+  Json j;
+  j["gravity"] = vec3(scene.gravity);
+  j["time_step"] = scene.time_step;
+  j["duration"] = scene.duration;
+  j["integrator"] = scene.integrator == IntegratorKind::paper ? "paper" : "default";
+  j["contact"] = Json{{"model", contact_model_name(scene.contact.model)},
+                      {"friction", scene.contact.friction},
+                      {"restitution", scene.contact.restitution},
+                      {"stiffness", scene.contact.stiffness},
+                      {"damping", scene.contact.damping}};
+  if (scene.container) {
+    j["container"] = Json{{"min", vec3(scene.container->min)}, {"max", vec3(scene.container->max)}};
+  }
+  Json walls = Json::array();
+  for (const WallDef& wall : scene.walls) {
+    walls.push_back(Json{{"point", vec3(wall.point)}, {"normal", vec3(wall.normal)}});
+  }
+  j["walls"] = std::move(walls);
+  Json bodies = Json::array();
+  for (const BodyDef& body : scene.bodies) bodies.push_back(body_to_json(body));
+  j["bodies"] = std::move(bodies);
+  j["output"] = Json{{"interval", scene.output.interval},
+                     {"checkpoint_interval", scene.output.checkpoint_interval},
+                     {"paraview", scene.output.paraview}};
+  return j;
+}
+
+std::string write_scene_text(const SceneDef& scene) {
+  return indented(scene_to_json(scene), 0) + "\n";
+}
+
+bool write_scene_file(const SceneDef& scene, const std::string& filename, std::string* error) {
+  std::ofstream out(filename, std::ios::binary | std::ios::trunc);
+  if (out) out << write_scene_text(scene);
+  out.close();
+  if (!out) {
+    if (error) *error = "cannot write " + filename;
+    return false;
+  }
+  return true;
+}
+
+}  // namespace tem

@@ -1,0 +1,268 @@
+// The `tem` program as a user runs it (TEM_BINARY): `info --json` against closed forms,
+// `check` on good scenes, on every broken scene of tests/scenes/bad/ and on scenes only the
+// core can reject (geometry), `--version` and help. Every run is a few milliseconds.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "io/scene_reader.hpp"
+
+namespace tem {
+namespace {
+
+const std::string kSource = TEM_SOURCE_DIR;
+
+struct TemRun {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string slurp(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Runs `tem ARGS` through the shell, capturing stdout and stderr separately.
+TemRun run_tem(const std::string& args) {
+  // The process id keeps files apart when ctest runs tests in parallel.
+  const std::string base = testing::TempDir() + "tem_cli_" + std::to_string(getpid());
+  const std::string out = base + ".out", err = base + ".err";
+  std::ostringstream command;  // (a stream: GCC 12 warns falsely on "'" + std::string)
+  command << "'" << TEM_BINARY << "' " << args << " >'" << out << "' 2>'" << err << "'";
+  const int raw = std::system(command.str().c_str());
+  TemRun run;
+  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  run.out = slurp(out);
+  run.err = slurp(err);
+  std::filesystem::remove(out);
+  std::filesystem::remove(err);
+  return run;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+Vec3 vec3(const nlohmann::json& j) { return Vec3(j[0], j[1], j[2]); }
+
+Mat3 mat3(const nlohmann::json& j) {
+  Mat3 m;
+  for (int r = 0; r < 3; ++r) m.row(r) = vec3(j[r]).transpose();
+  return m;
+}
+
+// Volume of a regular hexagonal prism of circumradius r and height h: (3 sqrt(3) / 2) r^2 h.
+Real hexagonal_prism_volume(Real r, Real h) { return 1.5 * std::sqrt(3.0) * r * r * h; }
+
+// Inertia of a regular n-gon prism (n >= 3) of mass m about its centroid: the polygon's second
+// moment is isotropic in its plane, (m / 24) r^2 (1 + 2 cos^2(pi / n)) per in-plane axis, which
+// for the hexagon gives 5/24 m r^2; about the symmetry axis twice that.
+void hexagonal_prism_inertia(Real m, Real r, Real h, Real* axial, Real* transverse) {
+  *axial = 5.0 / 12.0 * m * r * r;
+  *transverse = 5.0 / 24.0 * m * r * r + m * h * h / 12.0;
+}
+
+struct InfoBody {
+  std::string name;
+  Real volume, mass;
+  Vec3 center;
+  Mat3 inertia;
+};
+
+std::vector<InfoBody> info_json(const std::string& scene, std::string* raw_out = nullptr) {
+  const TemRun run = run_tem("info --json '" + scene + "'");
+  EXPECT_EQ(run.status, 0) << run.err;
+  if (raw_out) *raw_out = run.out;
+  std::vector<InfoBody> bodies;
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(run.out);  // throws unless stdout is exactly one JSON value
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "stdout is not one JSON object: " << e.what() << "\n" << run.out;
+    return bodies;
+  }
+  EXPECT_EQ(j.size(), 1u);
+  for (const auto& b : j.at("bodies")) {
+    bodies.push_back({b.at("name"), b.at("volume"), b.at("mass"), vec3(b.at("center_of_mass")),
+                      mat3(b.at("inertia"))});
+  }
+  return bodies;
+}
+
+TEST(Cli, InfoJsonOfThePaperCoin) {
+  const std::string scene = kSource + "/scenes/paper/coin.json";
+  const SceneReadResult def = read_scene_file(scene);
+  ASSERT_TRUE(def.ok());
+  const BodyDef& coin = def.scene.bodies.at(0);
+  std::string out;
+  const std::vector<InfoBody> bodies = info_json(scene, &out);
+  ASSERT_EQ(bodies.size(), 1u);
+  const InfoBody& b = bodies[0];
+  EXPECT_EQ(b.name, "coin");
+
+  const Real r = coin.shape.radius, h = coin.shape.height;
+  const Real volume = hexagonal_prism_volume(r, h);
+  EXPECT_NEAR(b.volume, volume, 1e-12 * volume);
+  EXPECT_NEAR(b.mass, coin.density * b.volume, 1e-14 * b.mass);
+  // A prism's centre of mass is the origin of its frame, which `position` places.
+  EXPECT_LE((b.center - coin.position).norm(), 1e-12);
+
+  // Inertia in world axes at the initial pose: g A g^T, symmetry axis along body y.
+  Real axial, transverse;
+  hexagonal_prism_inertia(b.mass, r, h, &axial, &transverse);
+  const Mat3 body_inertia = Vec3(transverse, axial, transverse).asDiagonal();
+  const Mat3 expected = coin.rotation * body_inertia * coin.rotation.transpose();
+  EXPECT_LE((b.inertia - expected).norm(), 1e-12 * expected.norm()) << "got\n"
+                                                                    << b.inertia << "\nexpected\n"
+                                                                    << expected;
+
+  // Full precision: numbers read back from the text as written, with up to 17 digits.
+  EXPECT_TRUE(contains(out, "\"volume\":"));
+  EXPECT_EQ(out.back(), '\n');
+}
+
+TEST(Cli, InfoJsonOfThePaperRingAndColumn) {
+  const std::string scene = kSource + "/scenes/paper/ring_column.json";
+  const SceneReadResult def = read_scene_file(scene);
+  ASSERT_TRUE(def.ok());
+  const std::vector<InfoBody> bodies = info_json(scene);
+  ASSERT_EQ(bodies.size(), 2u);
+  EXPECT_EQ(bodies[0].name, "ring");
+  EXPECT_EQ(bodies[1].name, "column");
+  for (std::size_t i = 0; i < 2; ++i) {
+    SCOPED_TRACE(bodies[i].name);
+    const BodyDef& d = def.scene.bodies[i];
+    EXPECT_GT(bodies[i].volume, 0);
+    EXPECT_NEAR(bodies[i].mass, d.density * bodies[i].volume, 1e-14 * bodies[i].mass);
+    // Both shapes are symmetric about their frame's origin.
+    EXPECT_LE((bodies[i].center - d.position).norm(), 1e-12);
+    const Mat3& inertia = bodies[i].inertia;
+    EXPECT_LE((inertia - inertia.transpose()).norm(), 1e-12 * inertia.norm());
+    EXPECT_GT(inertia.ldlt().vectorD().minCoeff(), 0);
+  }
+  const BodyDef& column = def.scene.bodies[1];
+  const Real volume = hexagonal_prism_volume(column.shape.radius, column.shape.height);
+  EXPECT_NEAR(bodies[1].volume, volume, 1e-12 * volume);
+}
+
+TEST(Cli, InfoPrintsATable) {
+  const TemRun run = run_tem("info '" + kSource + "/scenes/paper/coin.json'");
+  EXPECT_EQ(run.status, 0) << run.err;
+  for (const char* part :
+       {"coin", "blocks 1", "volume", "mass", "centre of mass", "inertia", "principal moments"}) {
+    EXPECT_TRUE(contains(run.out, part)) << part << " missing in\n" << run.out;
+  }
+}
+
+TEST(Cli, CheckAcceptsGoodScenes) {
+  for (const std::string scene :
+       {"scenes/paper/coin.json", "scenes/paper/ring_column.json", "tests/scenes/full.json"}) {
+    const TemRun run = run_tem("check '" + kSource + "/" + scene + "'");
+    EXPECT_EQ(run.status, 0) << scene << "\n" << run.err;
+    EXPECT_TRUE(contains(run.out, scene + ": ok (")) << run.out;
+  }
+}
+
+// The same table as the reader's test: every broken scene, through the program.
+TEST(Cli, CheckRejectsEveryBrokenScene) {
+  std::ifstream table(kSource + "/tests/scenes/bad/expected.tsv");
+  ASSERT_TRUE(table);
+  std::map<std::string, std::vector<std::pair<std::string, std::string>>> expected;
+  std::string line;
+  while (std::getline(table, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    std::string file, path, fragment;
+    std::getline(fields, file, '\t');
+    std::getline(fields, path, '\t');
+    std::getline(fields, fragment);
+    expected[file].push_back({path, fragment});
+  }
+  ASSERT_GE(expected.size(), 30u);
+  for (const auto& [file, problems] : expected) {
+    SCOPED_TRACE(file);
+    const std::string scene = kSource + "/tests/scenes/bad/" + file;
+    const TemRun run = run_tem("check '" + scene + "'");
+    EXPECT_EQ(run.status, 1);
+    EXPECT_TRUE(run.out.empty()) << run.out;
+    for (const auto& [path, fragment] : problems) {
+      // "FILE: PATH: reason", or "FILE: reason" for problems with the file itself.
+      const std::string prefix = scene + ": " + (path == "-" ? "" : path + ": ");
+      bool found = false;
+      std::istringstream lines(run.err);
+      for (std::string message; std::getline(lines, message);) {
+        found = found || (message.rfind(prefix, 0) == 0 && contains(message, fragment));
+      }
+      EXPECT_TRUE(found) << "expected a line " << prefix << "..." << fragment << "...\n" << run.err;
+    }
+  }
+}
+
+// Scenes the reader accepts but the core cannot build: the message still names the shape.
+TEST(Cli, CheckReportsGeometricProblemsWithTheirPath) {
+  for (const std::string file :
+       {"coplanar_points.json", "interior_point.json", "ring_nonconvex_blocks.json"}) {
+    SCOPED_TRACE(file);
+    const std::string scene = kSource + "/tests/scenes/bad_geometry/" + file;
+    ASSERT_TRUE(read_scene_file(scene).ok());
+    const TemRun run = run_tem("check '" + scene + "'");
+    EXPECT_EQ(run.status, 1);
+    EXPECT_TRUE(contains(run.err, scene + ": bodies[0].shape")) << run.err;
+  }
+}
+
+TEST(Cli, InfoOnABrokenSceneFailsWithNothingOnStdout) {
+  const std::string scene = kSource + "/tests/scenes/bad/zero_height.json";
+  const TemRun run = run_tem("info --json '" + scene + "'");
+  EXPECT_EQ(run.status, 1);
+  EXPECT_TRUE(run.out.empty()) << run.out;
+  EXPECT_TRUE(contains(run.err, scene + ": bodies[0].shape.height: must be a positive number"))
+      << run.err;
+}
+
+TEST(Cli, MissingFileSaysSo) {
+  for (const std::string command : {"check", "info"}) {
+    const TemRun run = run_tem(command + " no_such_scene.json");
+    EXPECT_EQ(run.status, 1);
+    EXPECT_TRUE(contains(run.err, "no_such_scene.json: no such file")) << run.err;
+  }
+}
+
+TEST(Cli, Version) {
+  const TemRun run = run_tem("--version");
+  EXPECT_EQ(run.status, 0);
+  EXPECT_EQ(run.out, std::string("tem ") + TEM_VERSION + "\n");
+}
+
+TEST(Cli, HelpListsTheCommands) {
+  for (const std::string args : {"help", "--help"}) {
+    const TemRun run = run_tem(args);
+    EXPECT_EQ(run.status, 0) << args;
+    EXPECT_TRUE(contains(run.out, "info")) << run.out;
+    EXPECT_TRUE(contains(run.out, "check")) << run.out;
+  }
+}
+
+TEST(Cli, BadCommandLinesAreUsageErrors) {
+  EXPECT_EQ(run_tem("").status, 2);
+  EXPECT_EQ(run_tem("frobnicate").status, 2);
+  EXPECT_EQ(run_tem("info").status, 2);  // no scene file
+  EXPECT_EQ(run_tem("check a.json b.json").status, 2);
+}
+
+}  // namespace
+}  // namespace tem
