@@ -39,6 +39,8 @@ TEST(Block, CubeTopology) {
   EXPECT_NEAR(cube.volume(), 6.0, 1e-14);
   EXPECT_TRUE(cube.convex());
   EXPECT_NEAR(cube.bounding_radius(), std::sqrt(1 + 4 + 9) / 2, 1e-14);
+  EXPECT_LT((cube.bounds_max() - Vec3(0.5, 1, 1.5)).norm(), 1e-15);
+  EXPECT_LT((cube.bounds_min() + Vec3(0.5, 1, 1.5)).norm(), 1e-15);
 }
 
 TEST(Block, CentroidIsTheOriginOfTheBlockFrame) {

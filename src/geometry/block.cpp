@@ -237,7 +237,12 @@ Block::Block(const PolyhedronDef& def) {
         (node_normals_paper_[e.nodes[0]] + node_normals_paper_[e.nodes[1]]).normalized());
   }
 
-  for (const Vec3& p : nodes_) bounding_radius_ = std::max(bounding_radius_, p.norm());
+  bounds_min_ = bounds_max_ = nodes_[0];
+  for (const Vec3& p : nodes_) {
+    bounding_radius_ = std::max(bounding_radius_, p.norm());
+    bounds_min_ = bounds_min_.cwiseMin(p);
+    bounds_max_ = bounds_max_.cwiseMax(p);
+  }
 }
 
 }  // namespace tem

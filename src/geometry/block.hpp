@@ -87,6 +87,9 @@ class Block {
   // Second moment of volume about the centroid, S = integral of x x^T dV (unit density).
   const Mat3& second_moment() const { return second_moment_; }
   Real bounding_radius() const { return bounding_radius_; }
+  // Axis-aligned bounds of the nodes in the block's frame (for world bounds in the broad phase).
+  const Vec3& bounds_min() const { return bounds_min_; }
+  const Vec3& bounds_max() const { return bounds_max_; }
   // Largest distance of a node outside the plane of a polygon: 0 for a convex block.
   Real nonconvexity() const { return nonconvexity_; }
   bool convex() const { return nonconvexity_ == 0; }
@@ -103,6 +106,7 @@ class Block {
   Real volume_ = 0;
   Mat3 second_moment_ = Mat3::Zero();
   Real bounding_radius_ = 0;
+  Vec3 bounds_min_ = Vec3::Zero(), bounds_max_ = Vec3::Zero();
   Real nonconvexity_ = 0;
 };
 
