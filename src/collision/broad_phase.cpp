@@ -1,0 +1,146 @@
+#include "collision/broad_phase.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tem {
+namespace {
+
+constexpr int kCellBits = 21;                   // per axis in a cell key
+constexpr Real kMaxCellsPerAxis = 1 << 20;      // leaves room below 2^21 after flooring
+constexpr long long kMaxCellsPerBlock = 64;     // more: the block goes on the large list
+
+unsigned long long cell_key(long long ix, long long iy, long long iz) {
+  return static_cast<unsigned long long>(ix) |
+         (static_cast<unsigned long long>(iy) << kCellBits) |
+         (static_cast<unsigned long long>(iz) << (2 * kCellBits));
+}
+
+}  // namespace
+
+Aabb block_bounds(const Block& block, const BlockPose& pose) {
+  Aabb box{pose.to_world(block.nodes()[0]), pose.to_world(block.nodes()[0])};
+  for (const Vec3& node : block.nodes()) {
+    const Vec3 p = pose.to_world(node);
+    box.min = box.min.cwiseMin(p);
+    box.max = box.max.cwiseMax(p);
+  }
+  return box;
+}
+
+void BroadPhase::build_proxies(const Model& model) {
+  proxies_.clear();
+  for (int b = 0; b < static_cast<int>(model.bodies.size()); ++b)
+    for (int i = 0; i < static_cast<int>(model.bodies[b].blocks.size()); ++i)
+      proxies_.push_back({b, i});
+}
+
+void BroadPhase::update(const Model& model, const State& state) {
+  size_t block_count = 0;
+  for (const Body& body : model.bodies) block_count += body.blocks.size();
+  if (proxies_.size() != block_count) build_proxies(model);
+
+  const size_t n = proxies_.size();
+  poses_.resize(n);
+  bounds_.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const BlockProxy& p = proxies_[i];
+    const BlockInstance& instance = model.bodies[p.body].blocks[p.instance];
+    poses_[i] = block_pose(instance, state.bodies[p.body]);
+    bounds_[i] = block_bounds(model.blocks[instance.block], poses_[i]);
+  }
+  find_block_pairs(model);
+  find_wall_pairs(model);
+}
+
+void BroadPhase::find_block_pairs(const Model& model) {
+  block_pairs_.clear();
+  large_.clear();
+  entries_.clear();
+  const int n = static_cast<int>(proxies_.size());
+  if (n < 2) return;
+
+  // The cell: the median largest extent of a block, grown if the scene would need more cells
+  // along an axis than a key holds.
+  extents_.resize(n);
+  Vec3 lo = bounds_[0].min, hi = bounds_[0].max;
+  for (int i = 0; i < n; ++i) {
+    extents_[i] = (bounds_[i].max - bounds_[i].min).maxCoeff();
+    lo = lo.cwiseMin(bounds_[i].min);
+    hi = hi.cwiseMax(bounds_[i].max);
+  }
+  std::nth_element(extents_.begin(), extents_.begin() + n / 2, extents_.end());
+  cell_ = std::max(extents_[n / 2], (hi - lo).maxCoeff() / kMaxCellsPerAxis);
+  const Real inv_cell = 1 / cell_;
+  auto cell_of = [&](const Vec3& p) {
+    return Eigen::Matrix<long long, 3, 1>(
+        static_cast<long long>(std::floor((p.x() - lo.x()) * inv_cell)),
+        static_cast<long long>(std::floor((p.y() - lo.y()) * inv_cell)),
+        static_cast<long long>(std::floor((p.z() - lo.z()) * inv_cell)));
+  };
+
+  // Every block into the cells its bounds cover; too large a block onto the large list.
+  for (int i = 0; i < n; ++i) {
+    const auto c0 = cell_of(bounds_[i].min), c1 = cell_of(bounds_[i].max);
+    const auto span = (c1 - c0).array() + 1;
+    if (span.prod() > kMaxCellsPerBlock) {
+      large_.push_back(i);
+      continue;
+    }
+    for (long long z = c0.z(); z <= c1.z(); ++z)
+      for (long long y = c0.y(); y <= c1.y(); ++y)
+        for (long long x = c0.x(); x <= c1.x(); ++x) entries_.push_back({cell_key(x, y, z), i});
+  }
+  std::sort(entries_.begin(), entries_.end(), [](const Entry& p, const Entry& q) {
+    return p.cell != q.cell ? p.cell < q.cell : p.proxy < q.proxy;
+  });
+
+  auto may_touch = [&](int i, int j) {
+    const BlockProxy &p = proxies_[i], &q = proxies_[j];
+    if (p.body == q.body) return false;
+    if (model.bodies[p.body].fixed && model.bodies[q.body].fixed) return false;
+    return bounds_[i].overlaps(bounds_[j]);
+  };
+  // Pairs within each cell, each counted only in the cell of its intersection's lower corner.
+  for (size_t first = 0; first < entries_.size();) {
+    size_t last = first;
+    while (last < entries_.size() && entries_[last].cell == entries_[first].cell) ++last;
+    for (size_t s = first; s < last; ++s)
+      for (size_t t = s + 1; t < last; ++t) {
+        const int i = entries_[s].proxy, j = entries_[t].proxy;
+        if (!may_touch(i, j)) continue;
+        const auto c = cell_of(bounds_[i].min.cwiseMax(bounds_[j].min));
+        if (cell_key(c.x(), c.y(), c.z()) != entries_[first].cell) continue;
+        block_pairs_.push_back({i, j});  // i < j: entries are sorted by proxy within a cell
+      }
+    first = last;
+  }
+  // Large blocks against every other block (once for two large ones).
+  std::vector<char> is_large(n, 0);
+  for (int i : large_) is_large[i] = 1;
+  for (int l : large_)
+    for (int j = 0; j < n; ++j) {
+      if (j == l || (is_large[j] && j < l) || !may_touch(l, j)) continue;
+      block_pairs_.push_back({std::min(l, j), std::max(l, j)});
+    }
+  std::sort(block_pairs_.begin(), block_pairs_.end(), [](const BlockPair& p, const BlockPair& q) {
+    return p.a != q.a ? p.a < q.a : p.b < q.b;
+  });
+}
+
+void BroadPhase::find_wall_pairs(const Model& model) {
+  wall_pairs_.clear();
+  for (int i = 0; i < static_cast<int>(proxies_.size()); ++i) {
+    if (model.bodies[proxies_[i].body].fixed) continue;
+    const Vec3 centre = (bounds_[i].min + bounds_[i].max) / 2;
+    const Vec3 half = (bounds_[i].max - bounds_[i].min) / 2;
+    for (int w = 0; w < static_cast<int>(model.walls.size()); ++w) {
+      const Wall& wall = model.walls[w];
+      // The lowest corner of the bounds along the wall's normal: behind the plane or not.
+      if (wall.normal.dot(centre - wall.point) - wall.normal.cwiseAbs().dot(half) < 0)
+        wall_pairs_.push_back({i, w});
+    }
+  }
+}
+
+}  // namespace tem

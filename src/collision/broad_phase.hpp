@@ -1,0 +1,85 @@
+// The broad phase (step 1 of a simulation step): from the world bounds of every block to the
+// block pairs and block-wall pairs whose bounds overlap, the only ones the narrow phase tests.
+//
+// Why a uniform grid and not sweep-and-prune. In a pile of N bodies in a box, sorting along one
+// axis leaves every block overlapping, along that axis, the whole slab of bodies beside it
+// (about N^(2/3) of them), so the sweep costs about N^(5/3). A grid whose cells are about one
+// block wide puts a bounded number of blocks in each cell, and the cost is linear in N but for
+// one sort of the (cell, block) entries. The cell is the median block extent, so a few large
+// blocks (a floor slab, a column) do not coarsen it; a block spanning too many cells goes on a
+// short list that is tested against every block instead.
+//
+// A pair that shares several cells is reported once: by the cell that holds the lower corner of
+// the intersection of the two bounds. Pairs come out sorted, so the narrow phase and everything
+// after it see the same order whatever the grid: results do not depend on the cell size.
+#pragma once
+
+#include <vector>
+
+#include "collision/block_pose.hpp"
+#include "world/model.hpp"
+
+namespace tem {
+
+// One block instance of one body: what the broad phase sorts.
+struct BlockProxy {
+  int body;
+  int instance;  // index into Model::bodies[body].blocks
+};
+
+struct Aabb {
+  Vec3 min, max;
+  bool overlaps(const Aabb& o) const {
+    return (min.array() <= o.max.array()).all() && (o.min.array() <= max.array()).all();
+  }
+};
+
+struct BlockPair {
+  int a, b;  // proxy indices, a < b, of blocks of two different bodies
+};
+
+struct WallPair {
+  int proxy;
+  int wall;  // index into Model::walls
+};
+
+class BroadPhase {
+ public:
+  // Poses and world bounds of every block at `state`, then the overlapping pairs. Pairs of two
+  // fixed bodies, and fixed bodies against walls, are never reported.
+  void update(const Model& model, const State& state);
+
+  const std::vector<BlockProxy>& proxies() const { return proxies_; }
+  const std::vector<BlockPose>& poses() const { return poses_; }
+  const std::vector<Aabb>& bounds() const { return bounds_; }
+  const std::vector<BlockPair>& block_pairs() const { return block_pairs_; }
+  const std::vector<WallPair>& wall_pairs() const { return wall_pairs_; }
+  // The cell edge of the last update and how many blocks were too large for the grid.
+  Real cell_size() const { return cell_; }
+  int large_blocks() const { return static_cast<int>(large_.size()); }
+
+ private:
+  void build_proxies(const Model& model);
+  void find_block_pairs(const Model& model);
+  void find_wall_pairs(const Model& model);
+
+  std::vector<BlockProxy> proxies_;
+  std::vector<BlockPose> poses_;
+  std::vector<Aabb> bounds_;
+  std::vector<BlockPair> block_pairs_;
+  std::vector<WallPair> wall_pairs_;
+  // Grid scratch, reused between steps.
+  struct Entry {
+    unsigned long long cell;
+    int proxy;
+  };
+  std::vector<Entry> entries_;
+  std::vector<int> large_;
+  std::vector<Real> extents_;
+  Real cell_ = 0;
+};
+
+// World bounds of a block's nodes at a pose (exact for the polyhedron).
+Aabb block_bounds(const Block& block, const BlockPose& pose);
+
+}  // namespace tem

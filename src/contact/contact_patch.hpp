@@ -1,0 +1,24 @@
+// A contact patch: one place where two bodies (or a body and a wall) overlap (method.md §5).
+#pragma once
+
+#include <vector>
+
+#include "tem/types.hpp"
+
+namespace tem {
+
+struct ContactPatch {
+  int body_a = -1;
+  int body_b = -1;   // -1 when the other side is a wall
+  int wall = -1;     // index into Model::walls, or -1
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();  // unit, from A into B: the force on A acts along -normal
+  Real depth = 0;               // overlap along the normal, > 0
+  int features = 0;             // flagged nodes and edges that made it
+  // Points of the overlap: nodes inside the other side and edge-face intersections. In the
+  // default variant these are the corners of the overlap region (polygon edges only).
+  std::vector<Vec3> vertices;
+  Vec3 bounds_min = Vec3::Zero(), bounds_max = Vec3::Zero();  // of the vertices
+};
+
+}  // namespace tem
