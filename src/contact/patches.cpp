@@ -102,32 +102,67 @@ Real extent_along(const std::vector<Vec3>& vertices, const Vec3& n) {
   return vertices.empty() ? 0 : hi - lo;
 }
 
+// Range of a block's nodes projected on a world direction.
+std::pair<Real, Real> projection(const Block& block, const BlockPose& pose, const Vec3& n) {
+  const Vec3 local = pose.rotation.transpose() * n;  // n . (R x + p) = (R^T n) . x + n . p
+  const Real shift = n.dot(pose.position);
+  Real lo = std::numeric_limits<Real>::infinity(), hi = -lo;
+  for (const Vec3& x : block.nodes()) {
+    lo = std::min(lo, local.dot(x));
+    hi = std::max(hi, local.dot(x));
+  }
+  return {lo + shift, hi + shift};
+}
+
+// Turns an axis so that it points from A into B, as the separating-axis theorem does: A lies on
+// the low side when pushing it back along the axis takes less than pushing it forward. The
+// faces the features crossed cannot be trusted for this: an edge of B leaving A through a
+// sloping face of A has that face's outward normal, which can point anywhere but into B.
+Vec3 oriented(const Vec3& axis, const Vec3& sum, const Block& a, const BlockPose& pose_a,
+              const Block& b, const BlockPose& pose_b) {
+  const auto [a_lo, a_hi] = projection(a, pose_a, axis);
+  const auto [b_lo, b_hi] = projection(b, pose_b, axis);
+  const Real forward = a_hi - b_lo, backward = b_hi - a_lo;
+  if (forward != backward) return forward < backward ? axis : Vec3(-axis);
+  return axis.dot(sum) >= 0 ? axis : Vec3(-axis);
+}
+
 // The default normal: among the normals of the faces the features went through, their sum, and
-// the cross products of crossing edges of A and B (the normal of an edge-edge contact), the one
-// along which the overlap region is thinnest, i.e. the shortest way out (as the separating-axis
-// theorem picks it). Candidates within round-off of the thinnest are decided by the largest
-// component along the sum, so that swapping A and B only flips the result.
-std::pair<Vec3, Real> thinnest_normal(const Group& g) {
+// the cross products of crossing edges of A and B (the normal of an edge-edge contact), the
+// axis along which the overlap region is thinnest, i.e. the shortest way out (as the
+// separating-axis theorem picks it), turned to point from A into B. Axes within round-off of
+// the thinnest are decided by the largest component along the sum, so that swapping A and B
+// only flips the result.
+std::pair<Vec3, Real> thinnest_normal(const Group& g, const Block& a, const BlockPose& pose_a,
+                                      const Block& b, const BlockPose& pose_b) {
   const Vec3 sum = g.normal_sum.normalized();
-  std::vector<Vec3> candidates = g.face_normals;
-  candidates.push_back(sum);
+  std::vector<Vec3> axes = g.face_normals;
+  axes.push_back(sum);
   for (const Vec3& ea : g.edges_a)
     for (const Vec3& eb : g.edges_b) {
       const Vec3 c = ea.cross(eb);
-      if (c.norm() > 1e-9 * ea.norm() * eb.norm())
-        candidates.push_back(c.dot(sum) >= 0 ? Vec3(c.normalized()) : Vec3(-c.normalized()));
+      if (c.norm() > 1e-9 * ea.norm() * eb.norm()) axes.push_back(c.normalized());
     }
+  std::vector<Real> extent(axes.size());
   Real best = std::numeric_limits<Real>::infinity();
-  for (const Vec3& c : candidates) best = std::min(best, extent_along(g.vertices, c));
+  for (size_t i = 0; i < axes.size(); ++i) {
+    extent[i] = extent_along(g.vertices, axes[i]);
+    best = std::min(best, extent[i]);
+  }
   const Real within = best + 1e-12 * (1 + best);
   Vec3 chosen = sum;
+  Real chosen_extent = extent_along(g.vertices, sum);
   Real along_sum = -std::numeric_limits<Real>::infinity();
-  for (const Vec3& c : candidates)
-    if (extent_along(g.vertices, c) <= within && c.dot(sum) > along_sum) {
-      along_sum = c.dot(sum);
-      chosen = c;
+  for (size_t i = 0; i < axes.size(); ++i) {
+    if (extent[i] > within) continue;
+    const Vec3 n = oriented(axes[i], sum, a, pose_a, b, pose_b);
+    if (n.dot(sum) > along_sum) {
+      along_sum = n.dot(sum);
+      chosen = n;
+      chosen_extent = extent[i];
     }
-  return {chosen, extent_along(g.vertices, chosen)};
+  }
+  return {chosen, chosen_extent};
 }
 
 Vec3 mean(const std::vector<Vec3>& points) {
@@ -222,7 +257,7 @@ void pair_patches(const Block& a, const BlockPose& pose_a, const Block& b,
       p.point = (pa + pb) / 2;
       p.depth = (pa - pb).dot(p.normal);
     } else {
-      std::tie(p.normal, p.depth) = thinnest_normal(g);
+      std::tie(p.normal, p.depth) = thinnest_normal(g, a, pose_a, b, pose_b);
       p.point = mean(g.vertices);
     }
     p.vertices = std::move(g.vertices);
