@@ -264,5 +264,52 @@ TEST(Cli, BadCommandLinesAreUsageErrors) {
   EXPECT_EQ(run_tem("check a.json b.json").status, 2);
 }
 
+// `tem contacts`: a cube pushed 0.003 into the wall x = 0 and 0.005 into the floor, with a lid
+// resting 0.001 deep on it: three patches as contacts.csv rows, normals from body_a into body_b,
+// the depths as placed, forces 0 (none computed).
+TEST(Cli, ContactsOfTheInitialState) {
+  const std::string scene = kSource + "/tests/scenes/cube_in_corner.json";
+  const TemRun run = run_tem("contacts '" + scene + "'");
+  ASSERT_EQ(run.status, 0) << run.err;
+  std::istringstream lines(run.out);
+  std::string header;
+  std::getline(lines, header);
+  EXPECT_EQ(header, "time,body_a,body_b,px,py,pz,nx,ny,nz,depth,fn,ft");
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(lines, line);) {
+    std::vector<std::string> cells;
+    std::istringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 12u) << line;
+    rows.push_back(cells);
+  }
+  ASSERT_EQ(rows.size(), 3u) << run.out;
+  auto normal = [](const std::vector<std::string>& r) {
+    return Vec3(std::stod(r[6]), std::stod(r[7]), std::stod(r[8]));
+  };
+  // Body pairs first, then walls in the container's order (x = 0 is wall 0, z = 0 wall 4).
+  EXPECT_EQ(rows[0][1] + "," + rows[0][2], "cube,lid");
+  EXPECT_LT((normal(rows[0]) - Vec3(0, 0, 1)).norm(), 1e-12);
+  EXPECT_NEAR(std::stod(rows[0][9]), 0.001, 1e-12);
+  EXPECT_EQ(rows[1][1] + "," + rows[1][2], "cube,wall");
+  EXPECT_LT((normal(rows[1]) - Vec3(-1, 0, 0)).norm(), 1e-12);
+  EXPECT_NEAR(std::stod(rows[1][9]), 0.003, 1e-12);
+  EXPECT_EQ(rows[2][1] + "," + rows[2][2], "cube,wall");
+  EXPECT_LT((normal(rows[2]) - Vec3(0, 0, -1)).norm(), 1e-12);
+  EXPECT_NEAR(std::stod(rows[2][9]), 0.005, 1e-12);
+  for (const auto& r : rows) {
+    EXPECT_EQ(r[0], "0");
+    EXPECT_EQ(r[10], "0");
+    EXPECT_EQ(r[11], "0");
+  }
+
+  // --out writes the same rows to a file.
+  const std::string file = testing::TempDir() + "tem_contacts_" + std::to_string(getpid());
+  const TemRun to_file = run_tem("contacts '" + scene + "' --out '" + file + "'");
+  EXPECT_EQ(to_file.status, 0) << to_file.err;
+  EXPECT_EQ(slurp(file), run.out);
+  std::filesystem::remove(file);
+}
+
 }  // namespace
 }  // namespace tem

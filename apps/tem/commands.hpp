@@ -29,4 +29,8 @@ int info_command(const std::string& scene_file, bool json);
 // `tem check SCENE`: every problem of the scene, or a one-line summary when there is none.
 int check_command(const std::string& scene_file);
 
+// `tem contacts SCENE [--out FILE]`: the contact patches at the initial state as contacts.csv
+// (to stdout, or to FILE).
+int contacts_command(const std::string& scene_file, const std::string& out_file);
+
 }  // namespace tem::cli

@@ -30,6 +30,12 @@ int run(int argc, char** argv) {
       app.add_subcommand("check", "Validate a scene file; print every problem found.");
   check->add_option("scene", scene_file, "Scene file (JSON)")->required();
 
+  std::string out_file;
+  CLI::App* contacts = app.add_subcommand(
+      "contacts", "Print the contact patches of the initial state as contacts.csv rows.");
+  contacts->add_option("scene", scene_file, "Scene file (JSON)")->required();
+  contacts->add_option("--out", out_file, "Write the rows to this file instead of stdout");
+
   CLI::App* help = app.add_subcommand("help", "Print this help.");
 
   try {
@@ -46,6 +52,7 @@ int run(int argc, char** argv) {
   }
   if (*info) return info_command(scene_file, json);
   if (*check) return check_command(scene_file);
+  if (*contacts) return contacts_command(scene_file, out_file);
   return kExitUsage;  // unreachable: require_subcommand(1)
 }
 
