@@ -92,6 +92,64 @@ TEST(ContactScenes, RingThreadedOnAColumnTouchesAtTwoPlaces) {
   }
 }
 
+// The paper's own shapes: the 16-segment ring of hexagonal section (R 0.15, r_s 0.05, one
+// block per segment) around the origin, axis z, and the hexagonal column (r 0.05, h 0.4) through
+// it, tilted about x until its flat side faces press on the ring's innermost ridge above on one
+// side and below on the other. Both bodies are symmetric under the half turn about x and under
+// the mirror x -> -x, so the patches must be too: at 53 degrees two patches, one the half turn
+// of the other, on the plane x = 0, their normals the column's side-face normal (0, cos, sin)
+// turned from the ring into the column. At 51 degrees the face meets the ridge at two of its
+// corners on each side, well off the plane x = 0: four patches, images of each other in pairs.
+TEST(ContactScenes, PaperRingThreadedOnThePaperColumn) {
+  ShapeDef ring;
+  ring.type = ShapeType::ring;
+  ring.segments = 16;
+  ring.sides = 6;
+  ring.radius = 0.15;
+  ring.section_radius = 0.05;
+  ShapeDef column;
+  column.type = ShapeType::prism;
+  column.sides = 6;
+  column.radius = 0.05;
+  column.height = 0.4;
+  auto half_turn = [](const Vec3& v) { return Vec3(v.x(), -v.y(), -v.z()); };
+  auto mirror = [](const Vec3& v) { return Vec3(-v.x(), v.y(), v.z()); };
+
+  const Real tilt = 53 * kPi / 180;
+  SceneDef scene;
+  scene.bodies.push_back(body("ring", ring, Vec3::Zero()));
+  scene.bodies.push_back(body("column", column, Vec3::Zero(), rotation_x(tilt)));
+  const std::vector<ContactPatch> two = contacts(scene);
+  ASSERT_EQ(two.size(), 2u);
+  EXPECT_LT((two[1].point - half_turn(two[0].point)).norm(), kTight);
+  EXPECT_LT((two[1].normal - half_turn(two[0].normal)).norm(), kTight);
+  EXPECT_NEAR(two[0].depth, two[1].depth, kTight);
+  EXPECT_GT(two[0].depth, 0);
+  EXPECT_LT(two[0].depth, 0.01);
+  const Vec3 face(0, std::cos(tilt), std::sin(tilt));  // a side face's outward normal
+  for (const ContactPatch& p : two) {
+    EXPECT_NEAR(p.point.x(), 0, kTight);
+    const Real side = p.point.y() > 0 ? -1 : 1;
+    EXPECT_LT((p.normal - side * face).norm(), kTight) << p.normal.transpose();
+  }
+
+  scene.bodies[1].rotation = rotation_x(51 * kPi / 180);
+  const std::vector<ContactPatch> four = contacts(scene);
+  ASSERT_EQ(four.size(), 4u);
+  for (const ContactPatch& p : four) {
+    int images = 0;
+    for (const ContactPatch& q : four) {
+      images += (q.point - mirror(p.point)).norm() < kTight &&
+                (q.normal - mirror(p.normal)).norm() < kTight;
+      images += (q.point - half_turn(p.point)).norm() < kTight &&
+                (q.normal - half_turn(p.normal)).norm() < kTight;
+    }
+    EXPECT_EQ(images, 2) << p.point.transpose();
+    EXPECT_NEAR(std::abs(p.point.x()), std::abs(four[0].point.x()), kTight);
+    EXPECT_GT(std::abs(p.point.x()), 0.01);
+  }
+}
+
 // A dumbbell, one body of three blocks (two cubes joined by a bar that stays clear of the table),
 // pressed d into a fixed table: two patches, one under each cube, normal -z, depth d.
 TEST(ContactScenes, BodyOfSeveralBlocksTouchesWithTwoOfThem) {

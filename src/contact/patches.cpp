@@ -311,8 +311,10 @@ bool bounds_touch(const ContactPatch& p, const ContactPatch& q) {
 }
 
 // Merges the patches [first, last) of one pair whose bounds touch, appending to `merged`. The
-// merged normal is the feature-weighted mean, the depth the deepest, the point the
-// feature-weighted mean.
+// merged point is the mean of all their overlap corners, the normal the mean of their normals
+// weighted by their corner counts, the depth the deepest. Corners, not feature counts, are the
+// weights: the diagonals of triangulated polygons are features too, and their direction would
+// make the result depend on how each polygon happened to be triangulated.
 void merge_run(std::vector<ContactPatch>& patches, int first, int last,
                std::vector<ContactPatch>& merged) {
   const int n = last - first;
@@ -325,22 +327,23 @@ void merge_run(std::vector<ContactPatch>& patches, int first, int last,
   const size_t start = merged.size();
   std::vector<Vec3> normal_sum;
   std::vector<int> parts;
+  auto weight = [](const ContactPatch& p) {
+    return static_cast<Real>(std::max<size_t>(p.vertices.size(), 1));
+  };
   for (int i = 0; i < n; ++i) {
     ContactPatch& p = patches[first + i];
     const int root = find(parent, i);
     if (index_of_root[root] < 0) {
       index_of_root[root] = static_cast<int>(normal_sum.size());
-      normal_sum.push_back(p.features * p.normal);
+      normal_sum.push_back(weight(p) * p.normal);
       parts.push_back(1);
-      p.point *= p.features;
       merged.push_back(std::move(p));
       continue;
     }
     const int m = index_of_root[root];
     ++parts[m];
     ContactPatch& q = merged[start + m];
-    normal_sum[m] += p.features * p.normal;
-    q.point += p.features * p.point;
+    normal_sum[m] += weight(p) * p.normal;
     q.features += p.features;
     q.depth = std::max(q.depth, p.depth);
     q.vertices.insert(q.vertices.end(), p.vertices.begin(), p.vertices.end());
@@ -348,8 +351,10 @@ void merge_run(std::vector<ContactPatch>& patches, int first, int last,
     q.bounds_max = q.bounds_max.cwiseMax(p.bounds_max);
   }
   for (size_t m = 0; m < normal_sum.size(); ++m) {
-    merged[start + m].point /= merged[start + m].features;
-    if (parts[m] > 1) merged[start + m].normal = normal_sum[m].normalized();
+    if (parts[m] == 1) continue;
+    ContactPatch& q = merged[start + m];
+    q.normal = normal_sum[m].normalized();
+    if (!q.vertices.empty()) q.point = mean(q.vertices);
   }
 }
 
