@@ -21,6 +21,25 @@ ShapeDef box_shape(const Vec3& size) {
   return s;
 }
 
+ShapeDef prism_shape(int sides, Real radius, Real height) {
+  ShapeDef s;
+  s.type = ShapeType::prism;
+  s.sides = sides;
+  s.radius = radius;
+  s.height = height;
+  return s;
+}
+
+ShapeDef ring_shape(int sides, Real radius, Real section_radius) {
+  ShapeDef s;
+  s.type = ShapeType::ring;
+  s.segments = 16;
+  s.sides = sides;
+  s.radius = radius;
+  s.section_radius = section_radius;
+  return s;
+}
+
 BodyDef body(const std::string& name, ShapeDef shape, const Vec3& position,
              const Mat3& rotation = Mat3::Identity()) {
   BodyDef b;
@@ -50,12 +69,7 @@ std::vector<ContactPatch> contacts(const SceneDef& scene) {
 TEST(ContactScenes, RingThreadedOnAColumnTouchesAtTwoPlaces) {
   const Real big_r = 0.15, section = 0.05, rho = big_r - section / 2;
   const Real inner = rho * std::cos(kPi / 16), d = 0.002, turn = kPi / 16;
-  ShapeDef ring;
-  ring.type = ShapeType::ring;
-  ring.segments = 16;
-  ring.sides = 3;
-  ring.radius = big_r;
-  ring.section_radius = section;
+  const ShapeDef ring = ring_shape(3, big_r, section);
   SceneDef scene;
   scene.bodies.push_back(body("ring", ring, Vec3::Zero()));
   scene.bodies.push_back(
@@ -101,17 +115,7 @@ TEST(ContactScenes, RingThreadedOnAColumnTouchesAtTwoPlaces) {
 // turned from the ring into the column. At 51 degrees the face meets the ridge at two of its
 // corners on each side, well off the plane x = 0: four patches, images of each other in pairs.
 TEST(ContactScenes, PaperRingThreadedOnThePaperColumn) {
-  ShapeDef ring;
-  ring.type = ShapeType::ring;
-  ring.segments = 16;
-  ring.sides = 6;
-  ring.radius = 0.15;
-  ring.section_radius = 0.05;
-  ShapeDef column;
-  column.type = ShapeType::prism;
-  column.sides = 6;
-  column.radius = 0.05;
-  column.height = 0.4;
+  const ShapeDef ring = ring_shape(6, 0.15, 0.05), column = prism_shape(6, 0.05, 0.4);
   auto half_turn = [](const Vec3& v) { return Vec3(v.x(), -v.y(), -v.z()); };
   auto mirror = [](const Vec3& v) { return Vec3(-v.x(), v.y(), v.z()); };
 
@@ -207,11 +211,7 @@ TEST(ContactScenes, BodyTouchingTwoWalls) {
 // The paper's coin resting flat on the floor of its container, 1e-4 deep: one patch with the
 // floor's normal, the depth as placed, at the coin's centre.
 TEST(ContactScenes, CoinFlatOnTheFloor) {
-  ShapeDef coin;
-  coin.type = ShapeType::prism;
-  coin.sides = 6;
-  coin.radius = 0.15;
-  coin.height = 0.1;
+  const ShapeDef coin = prism_shape(6, 0.15, 0.1);
   SceneDef scene;
   scene.container = ContainerDef{};
   scene.bodies.push_back(body("coin", coin, Vec3(0.5, 0.5, 0.05 - 1e-4)));

@@ -18,6 +18,26 @@ int element_holding(const Block& b, const Vec3& q, bool strict) {
   return -1;
 }
 
+// The same for a convex block, without scanning every element: the ray from the centroid through
+// q leaves the block through the face whose plane it reaches first, the largest
+// (n.q) / offset = 1 + distance / offset, so only that polygon's elements can hold q. The full
+// scan remains for round-off on the rim between two polygons.
+int element_holding_convex(const Block& b, const Vec3& q, const Real* distance) {
+  const int n_polys = static_cast<int>(b.polygons().size());
+  int first = 0;
+  Real reach = -std::numeric_limits<Real>::infinity();
+  for (int f = 0; f < n_polys; ++f) {
+    const Real r = distance[f] / b.polygons()[f].offset;
+    if (r > reach) {
+      reach = r;
+      first = f;
+    }
+  }
+  for (int t : b.polygons()[first].triangles)
+    if ((b.elements()[t].inverse * q).minCoeff() >= 0) return t;
+  return element_holding(b, q, false);
+}
+
 // Triangle of polygon `f` of `b` containing the in-plane point x, by eq. 21's s, t >= 0,
 // s + t <= 1; -1 when x lies outside the polygon.
 int triangle_holding(const Block& b, int f, const Vec3& x) {
@@ -75,7 +95,7 @@ bool one_side(const Block& a, const BlockPose& pose_a, const Block& b, const Blo
     int element;
     if (b.convex()) {
       if (!(largest < 0)) continue;
-      element = element_holding(b, q[i], false);
+      element = element_holding_convex(b, q[i], &d[i * n_polys]);
     } else {
       element = element_holding(b, q[i], true);
       if (element < 0) continue;
@@ -86,17 +106,36 @@ bool one_side(const Block& a, const BlockPose& pose_a, const Block& b, const Blo
                          pose_b.rotation * b.polygons()[nearest].normal});
   }
 
-  // Step 4: edges through faces: a sign change of the plane distance, then eq. 21.
+  // Step 4: edges through faces: a sign change of the plane distance, then eq. 21. Distances
+  // are affine along an edge, so those of the crossing point to every other face plane come
+  // from the end nodes' for free: an edge lying wholly outside one face plane misses the block,
+  // and a crossing point outside another face plane misses the polygon, before any triangle
+  // test. The slack lets eq. 21 decide the points on a polygon's rim, as it would alone.
+  const Real slack = 1e-9 * b.bounding_radius();
   for (int k = 0; k < static_cast<int>(a.edges().size()); ++k) {
     const Edge& e = a.edges()[k];
     const int i = e.nodes[0], j = e.nodes[1];
+    const Real* di_all = &d[i * n_polys];
+    const Real* dj_all = &d[j * n_polys];
+    bool outside_one_plane = false;
+    for (int g = 0; g < n_polys && !outside_one_plane; ++g)
+      outside_one_plane = di_all[g] > 0 && dj_all[g] > 0;
+    if (outside_one_plane && b.convex()) continue;
     for (int f = 0; f < n_polys; ++f) {
-      const Real di = d[i * n_polys + f], dj = d[j * n_polys + f];
+      const Real di = di_all[f], dj = dj_all[f];
       if ((di > 0 && dj > 0) || (di < 0 && dj < 0) || di == dj) continue;
-      const Vec3 x = q[i] + di / (di - dj) * (q[j] - q[i]);
-      const int t = triangle_holding(b, f, x);
-      if (t < 0) continue;
-      out.edges.push_back({k, t, pose_b.to_world(x), pose_b.rotation * b.triangles()[t].normal});
+      const Real t = di / (di - dj);
+      if (b.convex()) {
+        bool inside_others = true;
+        for (int g = 0; g < n_polys && inside_others; ++g)
+          inside_others = g == f || di_all[g] + t * (dj_all[g] - di_all[g]) <= slack;
+        if (!inside_others) continue;
+      }
+      const Vec3 x = q[i] + t * (q[j] - q[i]);
+      const int tri = triangle_holding(b, f, x);
+      if (tri < 0) continue;
+      out.edges.push_back(
+          {k, tri, pose_b.to_world(x), pose_b.rotation * b.triangles()[tri].normal});
     }
   }
   return true;
