@@ -93,6 +93,8 @@ void expect_scene_eq(const SceneDef& a, const SceneDef& b, double rotation_toler
   EXPECT_EQ(a.contact.restitution, b.contact.restitution);
   EXPECT_EQ(a.contact.stiffness, b.contact.stiffness);
   EXPECT_EQ(a.contact.damping, b.contact.damping);
+  EXPECT_EQ(a.contact.normals, b.contact.normals);
+  EXPECT_EQ(a.contact.points, b.contact.points);
   ASSERT_EQ(a.container.has_value(), b.container.has_value());
   if (a.container) {
     EXPECT_EQ(a.container->min, b.container->min);

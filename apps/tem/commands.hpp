@@ -14,6 +14,8 @@ namespace tem::cli {
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitBadInput = 1;  // the scene has problems, or the file is missing
 inline constexpr int kExitUsage = 2;     // the command line itself is wrong
+inline constexpr int kExitFailed = 3;    // a run failed: its output could not be written, or
+                                         // its state stopped being finite
 
 // Reads the scene and builds its model. On failure prints every problem found, one per line
 // ("FILE: PATH: reason"), to stderr and returns nothing. `problem_count`, when given, receives
@@ -32,5 +34,9 @@ int check_command(const std::string& scene_file);
 // `tem contacts SCENE [--out FILE]`: the contact patches at the initial state as contacts.csv
 // (to stdout, or to FILE).
 int contacts_command(const std::string& scene_file, const std::string& out_file);
+
+// `tem run SCENE --out DIR [--contacts]`: simulates and writes bodies.csv, energy.csv,
+// scene.json (and contacts.csv) into DIR.
+int run_command(const std::string& scene_file, const std::string& out_dir, bool contacts);
 
 }  // namespace tem::cli

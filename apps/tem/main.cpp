@@ -30,6 +30,13 @@ int run(int argc, char** argv) {
       app.add_subcommand("check", "Validate a scene file; print every problem found.");
   check->add_option("scene", scene_file, "Scene file (JSON)")->required();
 
+  std::string out_dir;
+  bool with_contacts = false;
+  CLI::App* run = app.add_subcommand("run", "Simulate a scene; write the results into a directory.");
+  run->add_option("scene", scene_file, "Scene file (JSON)")->required();
+  run->add_option("--out", out_dir, "Directory for bodies.csv, energy.csv, scene.json")->required();
+  run->add_flag("--contacts", with_contacts, "Also write contacts.csv (every patch at every output)");
+
   std::string out_file;
   CLI::App* contacts = app.add_subcommand(
       "contacts", "Print the contact patches of the initial state as contacts.csv rows.");
@@ -53,6 +60,7 @@ int run(int argc, char** argv) {
   if (*info) return info_command(scene_file, json);
   if (*check) return check_command(scene_file);
   if (*contacts) return contacts_command(scene_file, out_file);
+  if (*run) return run_command(scene_file, out_dir, with_contacts);
   return kExitUsage;  // unreachable: require_subcommand(1)
 }
 

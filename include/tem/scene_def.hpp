@@ -17,6 +17,11 @@ enum class ShapeType { prism, ring, box, convex, compound };
 enum class Axis { x, y, z };
 enum class IntegratorKind { default_, paper };
 enum class ContactModel { semm, semm_paper, penalty };
+// How a patch's normal and depth are found (method.md §5): the paper's node/edge-normal rule, or
+// from the faces the features went through (the default).
+enum class PatchNormals { paper, faces };
+// Where a patch's force acts: one point (the paper), or its extreme overlap corners.
+enum class PatchPoints { one, corners };
 
 struct ShapeDef {
   ShapeType type = ShapeType::box;
@@ -61,6 +66,10 @@ struct ContactDef {
   Real restitution = 0.0;
   Real stiffness = 0.0;  // penalty: normal spring constant (0: not given)
   Real damping = 0.0;    // penalty: normal dashpot constant
+  // Both default to the paper's choice under semm-paper and to the project's otherwise; the
+  // reader fills them in, so a SceneDef always says which is used.
+  PatchNormals normals = PatchNormals::faces;
+  PatchPoints points = PatchPoints::corners;
 };
 
 struct WallDef {

@@ -5,15 +5,20 @@
 namespace tem {
 
 PatchVariant patch_variant(const SceneDef& scene) {
-  return scene.contact.model == ContactModel::semm_paper ? NormalVariant::paper
-                                                         : NormalVariant::default_;
+  return scene.contact.normals == PatchNormals::paper ? NormalVariant::paper
+                                                     : NormalVariant::default_;
 }
 
 void detect_contacts(const Model& model, const State& state, PatchVariant variant,
                      ContactWorkspace& w, std::vector<ContactPatch>& patches) {
-  patches.clear();
   // 1. Broad phase: candidate block pairs and block-wall pairs from world bounds.
   w.broad_phase.update(model, state);
+  find_patches(model, variant, w, patches);
+}
+
+void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
+                  std::vector<ContactPatch>& patches) {
+  patches.clear();
   const std::vector<BlockProxy>& proxies = w.broad_phase.proxies();
   const std::vector<BlockPose>& poses = w.broad_phase.poses();
   auto block_of = [&](int proxy) -> const Block& {

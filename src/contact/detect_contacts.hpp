@@ -12,7 +12,7 @@
 
 namespace tem {
 
-// The paper's node/edge-normal rule with semm-paper, the face-based default otherwise.
+// The scene's contact.normals: the paper's node/edge-normal rule or the face-based default.
 PatchVariant patch_variant(const SceneDef& scene);
 
 // Everything contact detection reuses from one step to the next.
@@ -24,7 +24,12 @@ struct ContactWorkspace {
   PatchScratch patch;
 };
 
-// Patches ordered by body pair (walls after bodies, by wall index), deterministic.
+// Narrow phase and patches for the pairs of the workspace's last broad-phase update. Patches
+// ordered by body pair (walls after bodies, by wall index), deterministic.
+void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& workspace,
+                  std::vector<ContactPatch>& patches);
+
+// Broad phase, then find_patches.
 void detect_contacts(const Model& model, const State& state, PatchVariant variant,
                      ContactWorkspace& workspace, std::vector<ContactPatch>& patches);
 

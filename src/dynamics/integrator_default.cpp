@@ -10,8 +10,8 @@
 // momentum L+ = g A Omega + N dt. Writing the torque as an impulse on L (not on Omega) is what
 // makes a constant torque give L exactly L0 + N t.
 //
-// Drift. x' = x + dt v+ - 1/2 dt^2 G is exact under constant gravity (the kick added the whole
-// G dt to v; the correction puts the parabola back). The rotation is torque-free over the step,
+// Drift. x' = x + dt v+ - 1/2 dt^2 (G + F/M) is exact under a constant acceleration (the kick
+// added the whole (G + F/M) dt to v; the correction puts the parabola back). The rotation is torque-free over the step,
 // advanced by the implicit midpoint rule on the body-frame momentum L_b = g^T L+:
 //   L_b' = L_b - dt Omega_m x (L_b + L_b')/2,   Omega_m = A^-1 (L_b + L_b')/2,
 // which is L_b' = cay(-dt R(Omega_m)) L_b with the Cayley transform
@@ -76,8 +76,11 @@ void integrate_default(const RigidInertia& body, const Vec3& gravity, const Vec3
   const Vec3 v_kicked = state.v + (gravity + force / body.mass) * dt;
   const Vec3 l_kicked = state.g * (a * state.omega) + torque * dt;
 
-  // Drift of the centre of mass, exact for constant gravity.
-  state.x += dt * v_kicked - 0.5 * dt * dt * gravity;
+  // Drift of the centre of mass, exact for a constant acceleration G + F/M over the step. The
+  // contact force is taken as acting through the step like gravity, not as a blow at its start:
+  // a body resting on the floor (F = -M G) then stays exactly where it is, where a blow would
+  // lift it by G dt^2 / 2 every step.
+  state.x += dt * v_kicked - 0.5 * dt * dt * (gravity + force / body.mass);
   state.v = v_kicked;
 
   // Drift of the rotation: implicit midpoint on L_b, solved for Omega_m by fixed point.

@@ -7,18 +7,13 @@
 #include <vector>
 
 #include "contact/contact_patch.hpp"
+#include "forces/contact_forces.hpp"
 #include "world/model.hpp"
 
 namespace tem {
 
 inline constexpr const char* kContactsCsvHeader =
     "time,body_a,body_b,px,py,pz,nx,ny,nz,depth,fn,ft";
-
-// Magnitudes of the force on body_a at one patch.
-struct PatchForce {
-  Real normal = 0;
-  Real tangential = 0;
-};
 
 // Writes the rows of one time. `forces` is empty or has one entry per patch. A wall is named
 // `wall`. Numbers are written with the shortest digits that read back exactly.

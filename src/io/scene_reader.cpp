@@ -88,7 +88,8 @@ Mat3 rotation_z_cs(Real c, Real s) {
 
 const KeyList kSceneKeys = {"gravity",   "time_step", "duration", "integrator", "contact",
                             "container", "walls",     "bodies",   "output"};
-const KeyList kContactKeys = {"model", "friction", "restitution", "stiffness", "damping"};
+const KeyList kContactKeys = {"model",   "friction", "restitution", "stiffness",
+                              "damping", "normals",  "points"};
 const KeyList kContainerKeys = {"min", "max"};
 const KeyList kWallKeys = {"point", "normal"};
 const KeyList kOutputKeys = {"interval", "checkpoint_interval", "paraview"};
@@ -203,6 +204,23 @@ class SceneReader {
                                                 {"semm-paper", ContactModel::semm_paper},
                                                 {"penalty", ContactModel::penalty}})) {
         contact->model = *model;
+      }
+    }
+    const bool paper = contact->model == ContactModel::semm_paper;
+    contact->normals = paper ? PatchNormals::paper : PatchNormals::faces;
+    contact->points = paper ? PatchPoints::one : PatchPoints::corners;
+    if (const Json* n = Reader::get(j, "normals")) {
+      if (auto normals = r_.choice<PatchNormals>(
+              *n, child(path, "normals"),
+              {{"paper", PatchNormals::paper}, {"faces", PatchNormals::faces}})) {
+        contact->normals = *normals;
+      }
+    }
+    if (const Json* n = Reader::get(j, "points")) {
+      if (auto points = r_.choice<PatchPoints>(
+              *n, child(path, "points"),
+              {{"one", PatchPoints::one}, {"corners", PatchPoints::corners}})) {
+        contact->points = *points;
       }
     }
     r_.read_number(j, path, "friction", &contact->friction, Bound::non_negative);

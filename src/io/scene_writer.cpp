@@ -183,7 +183,9 @@ Json scene_to_json(const SceneDef& scene) {
                       {"friction", scene.contact.friction},
                       {"restitution", scene.contact.restitution},
                       {"stiffness", scene.contact.stiffness},
-                      {"damping", scene.contact.damping}};
+                      {"damping", scene.contact.damping},
+                      {"normals", scene.contact.normals == PatchNormals::paper ? "paper" : "faces"},
+                      {"points", scene.contact.points == PatchPoints::one ? "one" : "corners"}};
   if (scene.container) {
     j["container"] = Json{{"min", vec3(scene.container->min)}, {"max", vec3(scene.container->max)}};
   }

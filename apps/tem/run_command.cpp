@@ -1,0 +1,74 @@
+// `tem run`: simulates a scene and writes its results (interface.md) into a directory, then
+// prints a summary: steps, speed, the time of each stage of the step, the contact solver's
+// sweeps.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "commands.hpp"
+#include "io/run_output.hpp"
+#include "world/step.hpp"
+
+namespace tem::cli {
+namespace {
+
+void print_summary(const Model& model, const State& state, const Workspace& w, double wall) {
+  const StageTimes& t = w.times;
+  const double steps = static_cast<double>(std::max<long long>(t.steps, 1));
+  const Energies e = system_energies(model, state);
+  std::fprintf(stderr,
+               "tem run: %lld steps to t = %.6g s in %.3f s (%.0f steps/s, %.2f us/step)\n"
+               "  per step: broad phase %.2f us, narrow phase + patches %.2f us, forces %.2f us, "
+               "integration %.2f us\n"
+               "  contact solver: %.2f sweeps per step on average, %d at most, %lld steps "
+               "unconverged\n"
+               "  final energy: kinetic %.9g, potential %.9g, total %.9g\n",
+               t.steps, state.time, wall, t.steps / std::max(wall, 1e-9), 1e6 * wall / steps,
+               1e6 * t.broad_phase / steps, 1e6 * t.narrow_phase / steps, 1e6 * t.forces / steps,
+               1e6 * t.integrate / steps, static_cast<double>(t.sweeps) / steps, t.max_sweeps,
+               t.unconverged_steps, e.kinetic, e.potential, e.total());
+}
+
+}  // namespace
+
+int run_command(const std::string& scene_file, const std::string& out_dir, bool contacts) {
+  const std::optional<Model> loaded = load_model(scene_file);
+  if (!loaded) return kExitBadInput;
+  const Model& model = *loaded;
+  print_warnings(scene_file, model);
+  const SceneDef& scene = model.scene;
+
+  const long long total_steps = std::llround(scene.duration / scene.time_step);
+  const long long every = std::max<long long>(1, std::llround(scene.output.interval / scene.time_step));
+  State state = initial_state(model);
+  Workspace workspace;
+  try {
+    RunOutput output(out_dir, model, contacts);
+    const auto start = std::chrono::steady_clock::now();
+    for (long long k = 0;; ++k) {
+      find_contact_forces(model, state, workspace);
+      if (k % every == 0 || k == total_steps) output.write(model, state, workspace);
+      if (k == total_steps) break;
+      advance(model, state, workspace);
+      const int bad = first_non_finite_body(state);
+      if (bad >= 0) {
+        std::cerr << scene_file << ": the state of body '" << model.bodies[bad].name
+                  << "' stopped being finite at step " << state.step << " (t = " << state.time
+                  << " s); the results up to the last output row are in " << out_dir << "\n";
+        return kExitFailed;
+      }
+    }
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    print_summary(model, state, workspace, wall);
+    std::cerr << "tem run: results in " << out_dir << "/ (bodies.csv, energy.csv"
+              << (contacts ? ", contacts.csv" : "") << ", scene.json)\n";
+  } catch (const std::exception& e) {
+    std::cerr << "tem run: " << e.what() << "\n";
+    return kExitFailed;
+  }
+  return kExitOk;
+}
+
+}  // namespace tem::cli

@@ -1,0 +1,39 @@
+// How each body's next-step velocities answer the step's contact impulses, as SEMM needs it
+// (method.md §6): the energy the contact forces minimise is a quadratic in them, and this is
+// that quadratic, taken from the integrator actually used so that the two never disagree.
+//
+// Both integrators make the next step's velocities affine in the contact impulses: the linear
+// one v' = v + G dt + P/M, the angular one Omega' = Omega_free + W h for an angular impulse h
+// (world axes). The energy at n+1 that the impulses can change is the kinetic energy
+// T = 1/2 M |v'|^2 + 1/2 Omega'.A Omega' (the paper's integrator moves x with the old v, so the
+// potential energy at n+1 does not depend on them; the default's drift keeps the kinetic
+// energy reached by the kick, so T is the energy after the whole step). Its gradient with
+// respect to an impulse J^T lambda is J y with the "pseudo velocity" y = W^T A Omega' (and v'
+// for the linear part), and its Hessian J Q J^T with Q = W^T A W. With the default integrator
+// W = A^-1 g^T, so y is the world angular velocity and Q the world inverse inertia; with the
+// paper's, W carries eq. 18's torque-rate term, which gives eq. 27's factor 3/2.
+#pragma once
+
+#include <vector>
+
+#include "world/model.hpp"
+
+namespace tem {
+
+struct BodyResponse {
+  Real inverse_mass = 0;               // 0 for a fixed body
+  Mat3 angular = Mat3::Zero();         // Q: angular impulse (world) -> pseudo angular velocity
+  Vec3 velocity = Vec3::Zero();        // y, linear part, with no contact impulse: v + G dt
+  Vec3 angular_velocity = Vec3::Zero();  // y, angular part, with no contact impulse
+};
+
+// Responses of every body for one step of `dt` from `state`.
+void body_responses(const Model& model, const State& state, Real dt,
+                    std::vector<BodyResponse>& out);
+
+// d Omega' / d N of the paper's update (eqs. 13, 17, 18) for a torque N held through the step:
+// A^-1 [3/2 dt I - dt^2 R(Omega) + 1/2 dt^2 R(A Omega) A^-1] g^T, with 1 for 3/2 on a body's
+// first step (no previous torque, no torque rate).
+Mat3 paper_torque_response(const RigidInertia& body, const BodyState& state, Real dt);
+
+}  // namespace tem

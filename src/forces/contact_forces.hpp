@@ -1,0 +1,44 @@
+// Step 4 of a simulation step (architecture.md): from the contact patches to the force and
+// torque on every body, by the scene's force model. One small interface; the models are
+// chosen by name (contact.model) and share the contact points and the body responses.
+#pragma once
+
+#include <vector>
+
+#include "contact/contact_patch.hpp"
+#include "forces/body_response.hpp"
+#include "forces/contact_points.hpp"
+#include "forces/semm.hpp"
+#include "world/model.hpp"
+
+namespace tem {
+
+// Magnitudes of the force on body_a at one patch, averaged over the step.
+struct PatchForce {
+  Real normal = 0;
+  Real tangential = 0;
+};
+
+// Scratch and results of the force stage, reused between steps.
+struct ContactForces {
+  std::vector<ContactPoint> points;
+  std::vector<BodyResponse> responses;
+  std::vector<Vec3> centres;
+  std::vector<Vec3> approach;  // start relative velocity in each point's frame
+  std::vector<PointImpulse> impulses;
+  // The last step's points and impulses, for the warm start; how far a point may move and still
+  // be the same contact, per body (1% of its size).
+  std::vector<ContactPoint> previous_points;
+  std::vector<PointImpulse> previous_impulses;
+  std::vector<Real> match_radius;
+  // Results: per body, world force and torque about its centre of mass, held through the step.
+  std::vector<Vec3> force, torque;
+  std::vector<PatchForce> patch_forces;  // per patch
+  SolverReport solver;
+};
+
+// Fills out.force, out.torque (one per body) and out.patch_forces (one per patch).
+void compute_contact_forces(const Model& model, const State& state,
+                            const std::vector<ContactPatch>& patches, ContactForces& out);
+
+}  // namespace tem

@@ -1,0 +1,55 @@
+#include "forces/contact_points.hpp"
+
+#include <array>
+#include <cmath>
+
+namespace tem {
+
+Vec3 any_orthogonal(const Vec3& n) {
+  // Cross with the axis least aligned with n: never degenerate.
+  const Vec3 a = std::abs(n.x()) < 0.57735 ? Vec3::UnitX()
+                 : std::abs(n.y()) < 0.57735 ? Vec3::UnitY()
+                                              : Vec3::UnitZ();
+  return n.cross(a).normalized();
+}
+
+void patch_points(const ContactPatch& patch, int index, bool one_per_patch,
+                  std::vector<ContactPoint>& out) {
+  ContactPoint base;
+  base.patch = index;
+  base.body_a = patch.body_a;
+  base.body_b = patch.body_b;
+  base.wall = patch.wall;
+  base.normal = patch.normal;
+  base.tangent1 = any_orthogonal(patch.normal);
+  base.tangent2 = patch.normal.cross(base.tangent1);
+  base.depth = patch.depth;
+  base.point = patch.point;
+  if (one_per_patch || patch.vertices.size() < 2) {
+    out.push_back(base);
+    return;
+  }
+  // The corner reaching furthest along each of eight tangent directions, projected onto the
+  // plane through the patch point; repeated corners are kept once.
+  const Real diagonal = std::sqrt(0.5);
+  const std::array<Vec3, 8> directions = {
+      base.tangent1,  -base.tangent1, base.tangent2, -base.tangent2,
+      diagonal * (base.tangent1 + base.tangent2),  diagonal * (base.tangent1 - base.tangent2),
+      diagonal * (-base.tangent1 + base.tangent2), diagonal * (-base.tangent1 - base.tangent2)};
+  const Real size = (patch.bounds_max - patch.bounds_min).norm();
+  const size_t first = out.size();
+  for (const Vec3& d : directions) {
+    size_t best = 0;
+    for (size_t k = 1; k < patch.vertices.size(); ++k)
+      if (d.dot(patch.vertices[k]) > d.dot(patch.vertices[best])) best = k;
+    const Vec3& v = patch.vertices[best];
+    ContactPoint p = base;
+    p.point = v - patch.normal.dot(v - patch.point) * patch.normal;
+    bool repeated = false;
+    for (size_t k = first; k < out.size() && !repeated; ++k)
+      repeated = (out[k].point - p.point).norm() <= 1e-9 * size;
+    if (!repeated) out.push_back(p);
+  }
+}
+
+}  // namespace tem

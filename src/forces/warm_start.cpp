@@ -1,0 +1,55 @@
+#include "forces/warm_start.hpp"
+
+#include <algorithm>
+#include <tuple>
+
+namespace tem {
+namespace {
+
+// The order of detect_contacts' patches: by body A, other bodies before walls, then by index.
+auto pair_key(const ContactPoint& c) {
+  const bool wall = c.wall >= 0;
+  return std::make_tuple(c.body_a, wall, wall ? c.wall : c.body_b);
+}
+
+}  // namespace
+
+void warm_start(const std::vector<ContactPoint>& previous,
+                const std::vector<PointImpulse>& previous_impulses,
+                const std::vector<ContactPoint>& points, const std::vector<Real>& radius,
+                std::vector<PointImpulse>& impulses) {
+  impulses.assign(points.size(), PointImpulse{});
+  // The runs of one pair in each list; patches come sorted by pair, so the runs are in the same
+  // order in both and one pass pairs them up.
+  size_t old_first = 0;
+  for (size_t first = 0; first < points.size();) {
+    size_t last = first;
+    while (last < points.size() && pair_key(points[last]) == pair_key(points[first])) ++last;
+    while (old_first < previous.size() && pair_key(previous[old_first]) < pair_key(points[first]))
+      ++old_first;
+    size_t old_last = old_first;
+    while (old_last < previous.size() && pair_key(previous[old_last]) == pair_key(points[first]))
+      ++old_last;
+    const Real r = radius[points[first].body_a];
+    for (size_t i = first; i < last; ++i) {
+      size_t best = old_last;
+      Real best_distance = r;
+      for (size_t k = old_first; k < old_last; ++k) {
+        const Real d = (previous[k].point - points[i].point).norm();
+        if (d < best_distance) {
+          best_distance = d;
+          best = k;
+        }
+      }
+      if (best == old_last) continue;
+      const ContactPoint& o = previous[best];
+      const PointImpulse& p = previous_impulses[best];
+      const Vec3 j = p.normal * o.normal + p.t1 * o.tangent1 + p.t2 * o.tangent2;
+      const ContactPoint& c = points[i];
+      impulses[i] = {std::max<Real>(0, j.dot(c.normal)), j.dot(c.tangent1), j.dot(c.tangent2)};
+    }
+    first = last;
+  }
+}
+
+}  // namespace tem

@@ -1,0 +1,86 @@
+#include "io/run_output.hpp"
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <filesystem>
+#include <stdexcept>
+
+#include "io/contacts_csv.hpp"
+#include "io/csv_number.hpp"
+#include "io/scene_writer.hpp"
+
+namespace tem {
+namespace {
+
+void open(std::ofstream& file, const std::string& path, const char* header) {
+  file.open(path, std::ios::out | std::ios::trunc);
+  if (!file) throw std::runtime_error(path + ": cannot be written");
+  file << header << '\n' << std::flush;
+}
+
+}  // namespace
+
+Quat attitude_quaternion(const Mat3& g) {
+  Mat3 rotation = g;
+  if ((g.transpose() * g - Mat3::Identity()).norm() > 1e-12) {
+    const Eigen::JacobiSVD<Mat3> svd(g, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    rotation = svd.matrixU() * svd.matrixV().transpose();
+  }
+  Quat q(rotation);
+  q.normalize();
+  if (q.w() < 0) q.coeffs() *= -1;
+  return q;
+}
+
+RunOutput::RunOutput(const std::string& directory, const Model& model, bool contacts)
+    : with_contacts_(contacts) {
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error) throw std::runtime_error(directory + ": cannot be created: " + error.message());
+  std::string message;
+  if (!write_scene_file(model.scene, directory + "/scene.json", &message))
+    throw std::runtime_error(message);
+  open(bodies_, directory + "/bodies.csv", "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz");
+  open(energy_, directory + "/energy.csv", "time,kinetic,potential,total,contacts,max_depth");
+  if (contacts) open(contacts_, directory + "/contacts.csv", kContactsCsvHeader);
+}
+
+void RunOutput::write(const Model& model, const State& state, const Workspace& workspace) {
+  std::string rows;
+  for (size_t i = 0; i < model.bodies.size(); ++i) {
+    const BodyState& s = state.bodies[i];
+    const Quat q = attitude_quaternion(s.g);
+    const Vec3 w = s.angular_velocity_world();
+    append_number(rows, state.time);
+    rows += ',' + model.bodies[i].name;
+    for (int k = 0; k < 3; ++k) append_field(rows, s.x[k]);
+    for (Real c : {q.w(), q.x(), q.y(), q.z()}) append_field(rows, c);
+    for (int k = 0; k < 3; ++k) append_field(rows, s.v[k]);
+    for (int k = 0; k < 3; ++k) append_field(rows, w[k]);
+    rows += '\n';
+  }
+  bodies_ << rows << std::flush;
+
+  const Energies e = system_energies(model, state);
+  Real max_depth = 0;
+  for (const ContactPatch& p : workspace.patches) max_depth = std::max(max_depth, p.depth);
+  rows.clear();
+  append_number(rows, state.time);
+  append_field(rows, e.kinetic);
+  append_field(rows, e.potential);
+  append_field(rows, e.total());
+  rows += ',' + std::to_string(workspace.patches.size());
+  append_field(rows, max_depth);
+  rows += '\n';
+  energy_ << rows << std::flush;
+
+  if (with_contacts_) {
+    write_contact_rows(contacts_, model, state.time, workspace.patches,
+                       workspace.forces.patch_forces);
+    contacts_ << std::flush;
+  }
+  if (!bodies_ || !energy_ || (with_contacts_ && !contacts_))
+    throw std::runtime_error("writing the results failed (disk full?)");
+}
+
+}  // namespace tem

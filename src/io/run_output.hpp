@@ -1,0 +1,31 @@
+// The files of `tem run` (interface.md): bodies.csv, energy.csv, contacts.csv (optional) and
+// scene.json in the output directory. Every row is flushed as it is written, so that the files
+// stay readable whatever stops the run.
+#pragma once
+
+#include <fstream>
+#include <string>
+
+#include "world/step.hpp"
+
+namespace tem {
+
+class RunOutput {
+ public:
+  // Creates `directory` if needed and writes scene.json and the CSV headers. Throws
+  // std::runtime_error naming the file that cannot be written.
+  RunOutput(const std::string& directory, const Model& model, bool contacts);
+
+  // Rows for `state`, with the patches and forces of the step that starts from it.
+  void write(const Model& model, const State& state, const Workspace& workspace);
+
+ private:
+  std::ofstream bodies_, energy_, contacts_;
+  bool with_contacts_;
+};
+
+// Attitude quaternion (w >= 0) of the rotation nearest to g: g itself in the default mode; in
+// paper mode, where eq. 16 lets g drift off the rotations, its polar factor.
+Quat attitude_quaternion(const Mat3& g);
+
+}  // namespace tem

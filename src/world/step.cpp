@@ -1,0 +1,83 @@
+#include "world/step.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "dynamics/integrator.hpp"
+
+namespace tem {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point& start) {
+  const Clock::time_point now = Clock::now();
+  const double s = std::chrono::duration<double>(now - start).count();
+  start = now;
+  return s;
+}
+
+}  // namespace
+
+void step(const Model& model, State& state, Workspace& w) {
+  find_contact_forces(model, state, w);
+  advance(model, state, w);
+}
+
+void find_contact_forces(const Model& model, const State& state, Workspace& w) {
+  const SceneDef& scene = model.scene;
+  Clock::time_point clock = Clock::now();
+
+  // 1. Broad phase: block pairs and block-wall pairs whose world bounds overlap.
+  w.contact.broad_phase.update(model, state);
+  w.times.broad_phase += seconds_since(clock);
+
+  // 2-3. Narrow phase and patches: node in element, edge through face, grouping.
+  find_patches(model, patch_variant(scene), w.contact, w.patches);
+  w.times.narrow_phase += seconds_since(clock);
+
+  // 4. Forces: the contact impulses of the scene's force model, as forces held over the step.
+  compute_contact_forces(model, state, w.patches, w.forces);
+  w.times.forces += seconds_since(clock);
+}
+
+void advance(const Model& model, State& state, Workspace& w) {
+  const SceneDef& scene = model.scene;
+  Clock::time_point clock = Clock::now();
+
+  // 5. Integration of every moving body under gravity and its contact force and torque.
+  for (size_t i = 0; i < model.bodies.size(); ++i) {
+    if (model.bodies[i].fixed) continue;
+    integrate(scene.integrator, model.bodies[i].inertia, scene.gravity, w.forces.force[i],
+              w.forces.torque[i], scene.time_step, state.bodies[i]);
+  }
+  ++state.step;
+  state.time = static_cast<Real>(state.step) * scene.time_step;  // no drift from summing dt
+  w.times.integrate += seconds_since(clock);
+
+  ++w.times.steps;
+  w.times.sweeps += w.forces.solver.sweeps;
+  w.times.max_sweeps = std::max(w.times.max_sweeps, w.forces.solver.sweeps);
+  if (!w.forces.solver.converged) ++w.times.unconverged_steps;
+}
+
+Energies system_energies(const Model& model, const State& state) {
+  Energies e;
+  for (size_t i = 0; i < model.bodies.size(); ++i) {
+    const RigidInertia& inertia = model.bodies[i].inertia;
+    e.kinetic += kinetic_energy(inertia, state.bodies[i]);
+    e.potential += potential_energy(inertia, model.scene.gravity, state.bodies[i]);
+  }
+  return e;
+}
+
+int first_non_finite_body(const State& state) {
+  for (size_t i = 0; i < state.bodies.size(); ++i) {
+    const BodyState& s = state.bodies[i];
+    if (!s.x.allFinite() || !s.v.allFinite() || !s.g.allFinite() || !s.omega.allFinite())
+      return static_cast<int>(i);
+  }
+  return -1;
+}
+
+}  // namespace tem

@@ -1,0 +1,55 @@
+// One simulation step, the table of contents of TEM (architecture.md): broad phase, narrow
+// phase and patches, forces, integration, with the time each stage took. Everything a step
+// needs besides the Model and the State lives in the Workspace, reused from step to step.
+#pragma once
+
+#include <vector>
+
+#include "contact/detect_contacts.hpp"
+#include "forces/contact_forces.hpp"
+#include "world/model.hpp"
+
+namespace tem {
+
+// Seconds spent in each stage, summed over the steps since the workspace was made.
+struct StageTimes {
+  double broad_phase = 0;
+  double narrow_phase = 0;  // narrow phase and patches, interleaved pair by pair
+  double forces = 0;
+  double integrate = 0;
+  long long steps = 0;
+  // The most Gauss-Seidel sweeps one step took, and their sum (for the mean).
+  int max_sweeps = 0;
+  long long sweeps = 0;
+  long long unconverged_steps = 0;
+};
+
+struct Workspace {
+  ContactWorkspace contact;
+  std::vector<ContactPatch> patches;  // of the last step, at the state it started from
+  ContactForces forces;               // of the last step
+  StageTimes times;
+};
+
+// Stages 1-4 at `state`: the patches and the contact forces of the step that starts there.
+void find_contact_forces(const Model& model, const State& state, Workspace& workspace);
+
+// Stage 5: integrates with the forces of the last find_contact_forces, which must have been
+// called on this same state.
+void advance(const Model& model, State& state, Workspace& workspace);
+
+// One whole step: find_contact_forces, then advance.
+void step(const Model& model, State& state, Workspace& workspace);
+
+// Whole-system energies at a state: kinetic, potential (-M G.x summed), their total.
+struct Energies {
+  Real kinetic = 0;
+  Real potential = 0;
+  Real total() const { return kinetic + potential; }
+};
+Energies system_energies(const Model& model, const State& state);
+
+// The first body whose state is not finite, or -1.
+int first_non_finite_body(const State& state);
+
+}  // namespace tem
