@@ -98,7 +98,8 @@ TEST(Semm, PredictedVelocitiesAreTheIntegratorsForBothIntegrators) {
 // A unit mass (unit inverse inertia) sliding at (2, 0, -3) onto a fixed plane with friction mu,
 // one contact point 0.5 below its centre of mass. By hand: the normal impulse stops the
 // approach (3, no lever along the normal); sticking takes a tangential impulse of 2 / 1.25
-// (effective mass 1/m + r^2/I along the slide), so friction gives min(1.6, 3 mu).
+// (effective mass 1/m + r^2/I along the slide), so friction gives min(1.6, 3 mu), on the wall
+// along +x (the body's slide is -x relative to the wall).
 TEST(Semm, SlidingImpactByHand) {
   for (Real mu : {0.0, 0.5, 1.0}) {
     std::vector<BodyResponse> bodies(1);
@@ -108,17 +109,26 @@ TEST(Semm, SlidingImpactByHand) {
     ContactPoint c{0, 0, -1, 0, Vec3::Zero(), Vec3(0, 0, -1), Vec3::UnitX(), Vec3::UnitY(), 0};
     c.tangent2 = c.normal.cross(c.tangent1);
     const std::vector<ContactPoint> points = {c};
-    // Start relative velocity of the wall w.r.t. the body, in the point's frame.
-    const std::vector<Vec3> start = {Vec3(-3, -2, 0)};
+    // Start relative velocity of the wall w.r.t. the body: normal -3 (approaching), slip -2.
+    const std::vector<Real> start = {-3};
+    std::vector<PatchFriction> patches(1);
+    patches[0].first = 0;
+    patches[0].last = 1;
+    patches[0].body_a = 0;
+    patches[0].normal = c.normal;
+    patches[0].tangent1 = c.tangent1;
+    patches[0].tangent2 = c.tangent2;
+    patches[0].start_slip = Vec3(-2, 0, 0);
     SolverSettings settings;
     settings.friction = mu;
     std::vector<PointImpulse> impulses(1);
     const SolverReport report =
-        solve_semm(points, start, bodies, {Vec3(0, 0, 0.5)}, settings, impulses);
+        solve_semm(points, start, bodies, {Vec3(0, 0, 0.5)}, settings, patches, impulses);
     EXPECT_TRUE(report.converged);
     EXPECT_NEAR(impulses[0].normal, 3, 1e-12);  // on the wall along -z, on the body +z
-    EXPECT_NEAR(impulses[0].t1, std::min(1.6, 3 * mu), 1e-9) << "mu " << mu;
-    EXPECT_NEAR(impulses[0].t2, 0, 1e-12);
+    EXPECT_NEAR(patches[0].t1, std::min(1.6, 3 * mu), 1e-9) << "mu " << mu;
+    EXPECT_NEAR(patches[0].t2, 0, 1e-12);
+    EXPECT_EQ(patches[0].twist, 0);  // one point: no reach for a twist
   }
 }
 
@@ -134,7 +144,8 @@ TEST(Semm, PaperSolveAdheresDefaultDoesNot) {
   std::vector<PointImpulse> paper, semm(1);
   solve_semm_paper({c}, bodies, {Vec3(0, 0, 0.1)}, paper);
   EXPECT_NEAR(paper[0].normal, -2, 1e-12);  // M * 1 pulled back
-  solve_semm({c}, {Vec3(-1, 0, 0)}, bodies, {Vec3(0, 0, 0.1)}, SolverSettings{}, semm);
+  std::vector<PatchFriction> no_friction;
+  solve_semm({c}, {-1}, bodies, {Vec3(0, 0, 0.1)}, SolverSettings{}, no_friction, semm);
   EXPECT_EQ(semm[0].normal, 0);
 }
 

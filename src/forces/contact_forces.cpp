@@ -7,20 +7,47 @@
 namespace tem {
 namespace {
 
-// Relative velocity (B minus A) at each point with the velocities at the start of the step, in
-// the point's frame (normal, tangent1, tangent2): what restitution answers, and what keeps the
-// impulses from adding energy (semm.hpp).
-void approach_velocities(const Model& model, const State& state, ContactForces& f) {
+// Velocity of a body's material point at p, at the start of the step (walls and fixed bodies
+// stand still).
+Vec3 start_velocity(const Model& model, const State& state, int body, const Vec3& p) {
+  if (body < 0 || model.bodies[body].fixed) return Vec3::Zero();
+  const BodyState& s = state.bodies[body];
+  return s.v + s.angular_velocity_world().cross(p - s.x);
+}
+
+Vec3 start_spin(const Model& model, const State& state, int body) {
+  if (body < 0 || model.bodies[body].fixed) return Vec3::Zero();
+  return state.bodies[body].angular_velocity_world();
+}
+
+// What restitution answers and what keeps the impulses from adding energy (semm.cpp): the
+// normal relative velocity (B minus A) at each point, and each patch's slip and spin at its
+// centre, with the velocities at the start of the step.
+void start_velocities(const Model& model, const State& state,
+                      const std::vector<ContactPatch>& patches, ContactForces& f) {
   f.approach.resize(f.points.size());
-  auto velocity = [&](int body, const Vec3& p) -> Vec3 {
-    if (body < 0 || model.bodies[body].fixed) return Vec3::Zero();
-    const BodyState& s = state.bodies[body];
-    return s.v + s.angular_velocity_world().cross(p - s.x);
-  };
   for (size_t i = 0; i < f.points.size(); ++i) {
     const ContactPoint& c = f.points[i];
-    const Vec3 u = velocity(c.body_b, c.point) - velocity(c.body_a, c.point);
-    f.approach[i] = Vec3(c.normal.dot(u), c.tangent1.dot(u), c.tangent2.dot(u));
+    f.approach[i] = c.normal.dot(start_velocity(model, state, c.body_b, c.point) -
+                                 start_velocity(model, state, c.body_a, c.point));
+  }
+  f.friction.assign(patches.size(), PatchFriction{});
+  for (size_t i = 0; i < f.points.size();) {
+    const ContactPoint& c = f.points[i];
+    PatchFriction& p = f.friction[c.patch];
+    p.first = static_cast<int>(i);
+    while (i < f.points.size() && f.points[i].patch == c.patch) ++i;
+    p.last = static_cast<int>(i);
+    p.body_a = c.body_a;
+    p.body_b = c.body_b;
+    p.centre = patches[c.patch].point;
+    p.normal = c.normal;
+    p.tangent1 = c.tangent1;
+    p.tangent2 = c.tangent2;
+    const Vec3 dv = start_velocity(model, state, c.body_b, p.centre) -
+                    start_velocity(model, state, c.body_a, p.centre);
+    const Vec3 dw = start_spin(model, state, c.body_b) - start_spin(model, state, c.body_a);
+    p.start_slip = Vec3(p.tangent1.dot(dv), p.tangent2.dot(dv), p.normal.dot(dw));
   }
 }
 
@@ -62,7 +89,7 @@ void compute_contact_forces(const Model& model, const State& state,
   if (paper) {
     f.solver = solve_semm_paper(f.points, f.responses, f.centres, f.impulses);
   } else {
-    approach_velocities(model, state, f);
+    start_velocities(model, state, patches, f);
     SolverSettings settings;
     settings.friction = scene.contact.friction;
     settings.restitution = scene.contact.restitution;
@@ -70,28 +97,35 @@ void compute_contact_forces(const Model& model, const State& state,
     settings.restitution_threshold = 2 * scene.gravity.norm() * dt;
     if (f.match_radius.size() != n_bodies) match_radii(model, f.match_radius);
     warm_start(f.previous_points, f.previous_impulses, f.points, f.match_radius, f.impulses);
-    f.solver = solve_semm(f.points, f.approach, f.responses, f.centres, settings, f.impulses);
+    f.solver = solve_semm(f.points, f.approach, f.responses, f.centres, settings, f.friction,
+                          f.impulses);
   }
 
   // Impulses to forces held through the step: on B +j, on A -j, with their moments.
-  std::vector<Vec3> tangential(patches.size(), Vec3::Zero());
+  auto push = [&](int body_a, int body_b, const Vec3& at, const Vec3& on_b, const Vec3& moment) {
+    if (!model.bodies[body_a].fixed) {
+      f.force[body_a] -= on_b;
+      f.torque[body_a] -= (at - f.centres[body_a]).cross(on_b) + moment;
+    }
+    if (body_b >= 0 && !model.bodies[body_b].fixed) {
+      f.force[body_b] += on_b;
+      f.torque[body_b] += (at - f.centres[body_b]).cross(on_b) + moment;
+    }
+  };
   for (size_t i = 0; i < f.points.size(); ++i) {
     const ContactPoint& c = f.points[i];
-    const PointImpulse& p = f.impulses[i];
-    const Vec3 t = (p.t1 * c.tangent1 + p.t2 * c.tangent2) / dt;
-    const Vec3 on_b = p.normal / dt * c.normal + t;
-    if (!model.bodies[c.body_a].fixed) {
-      f.force[c.body_a] -= on_b;
-      f.torque[c.body_a] -= (c.point - f.centres[c.body_a]).cross(on_b);
-    }
-    if (c.body_b >= 0 && !model.bodies[c.body_b].fixed) {
-      f.force[c.body_b] += on_b;
-      f.torque[c.body_b] += (c.point - f.centres[c.body_b]).cross(on_b);
-    }
-    f.patch_forces[c.patch].normal += p.normal / dt;
-    tangential[c.patch] -= t;  // on A
+    const Vec3 on_b = f.impulses[i].normal / dt * c.normal;
+    push(c.body_a, c.body_b, c.point, on_b, Vec3::Zero());
+    f.patch_forces[c.patch].normal += f.impulses[i].normal / dt;
   }
-  for (size_t k = 0; k < patches.size(); ++k) f.patch_forces[k].tangential = tangential[k].norm();
+  if (!paper) {
+    for (size_t k = 0; k < f.friction.size(); ++k) {
+      const PatchFriction& p = f.friction[k];
+      const Vec3 on_b = (p.t1 * p.tangent1 + p.t2 * p.tangent2) / dt;
+      push(p.body_a, p.body_b, p.centre, on_b, p.twist / dt * p.normal);
+      f.patch_forces[k].tangential = on_b.norm();
+    }
+  }
 }
 
 }  // namespace tem

@@ -24,7 +24,8 @@ struct ContactForces {
   std::vector<ContactPoint> points;
   std::vector<BodyResponse> responses;
   std::vector<Vec3> centres;
-  std::vector<Vec3> approach;  // start relative velocity in each point's frame
+  std::vector<Real> approach;  // normal relative velocity at each point at the step's start
+  std::vector<PatchFriction> friction;  // one per patch (default SEMM)
   std::vector<PointImpulse> impulses;
   // The last step's points and impulses, for the warm start; how far a point may move and still
   // be the same contact, per body (1% of its size).

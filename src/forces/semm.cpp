@@ -7,40 +7,32 @@
 namespace tem {
 namespace {
 
-// One side of a contact point: the body's pseudo velocities (updated as impulses are applied),
-// its response and the lever arm from its centre of mass. A wall or a fixed body has a zero
-// response and stays still.
+using Vec2 = Eigen::Matrix<Real, 2, 1>;
+using Mat2 = Eigen::Matrix<Real, 2, 2>;
+
+// One side of a contact: the body's pseudo velocities (updated as impulses are applied), its
+// response and the lever arm from its centre of mass. A wall or a fixed body has no response
+// and stays still.
 struct Side {
   BodyResponse* body = nullptr;
   Vec3 arm = Vec3::Zero();
-};
 
-// Velocity of the contact point on one side.
-Vec3 point_velocity(const Side& s) {
-  if (!s.body) return Vec3::Zero();
-  return s.body->velocity + s.body->angular_velocity.cross(s.arm);
-}
-
-// Applies an impulse j (world) to one side.
-void apply(Side& s, const Vec3& j) {
-  if (!s.body) return;
-  s.body->velocity += s.body->inverse_mass * j;
-  s.body->angular_velocity += s.body->angular * s.arm.cross(j);
-}
-
-// K of one side: the change of its point velocity per unit impulse, I/M - R(r) Q R(r).
-Mat3 point_response(const Side& s) {
-  if (!s.body) return Mat3::Zero();
-  const Mat3 r = cross_matrix(s.arm);
-  return s.body->inverse_mass * Mat3::Identity() - r * s.body->angular * r;
-}
-
-struct Row {
-  Side a, b;
-  Mat3 frame;          // columns: normal, tangent1, tangent2
-  Mat3 k;              // K in the contact frame
-  Real target = 0;     // required normal relative velocity
-  Eigen::Matrix<Real, 2, 1> start_slip = Eigen::Matrix<Real, 2, 1>::Zero();  // at step start
+  Vec3 point_velocity() const {
+    return body ? Vec3(body->velocity + body->angular_velocity.cross(arm)) : Vec3::Zero();
+  }
+  Vec3 spin() const { return body ? body->angular_velocity : Vec3::Zero(); }
+  // A linear impulse j at the arm's end and an angular impulse h.
+  void apply(const Vec3& j, const Vec3& h) {
+    if (!body) return;
+    body->velocity += body->inverse_mass * j;
+    body->angular_velocity += body->angular * (arm.cross(j) + h);
+  }
+  // Change of the point velocity and the spin for (j, h), without applying it.
+  std::pair<Vec3, Vec3> response(const Vec3& j, const Vec3& h) const {
+    if (!body) return {Vec3::Zero(), Vec3::Zero()};
+    const Vec3 dw = body->angular * (arm.cross(j) + h);
+    return {body->inverse_mass * j + dw.cross(arm), dw};
+  }
 };
 
 Side side_of(std::vector<BodyResponse>& bodies, const std::vector<Vec3>& centres, int body,
@@ -53,68 +45,103 @@ Side side_of(std::vector<BodyResponse>& bodies, const std::vector<Vec3>& centres
   return s;
 }
 
-}  // namespace
+struct NormalRow {
+  Side a, b;
+  Vec3 normal;
+  Real k = 0;       // n.K n: change of the normal relative velocity per unit impulse
+  Real target = 0;  // required normal relative velocity after the step
+  int patch = 0;    // index into the friction rows
+};
 
-Vec3 relative_velocity(const std::vector<BodyResponse>& bodies, const std::vector<Vec3>& centres,
-                       const ContactPoint& c) {
-  auto velocity = [&](int body) -> Vec3 {
-    if (body < 0) return Vec3::Zero();
-    const BodyResponse& r = bodies[body];
-    return r.velocity + r.angular_velocity.cross(c.point - centres[body]);
-  };
-  return velocity(c.body_b) - velocity(c.body_a);
+struct FrictionRow {
+  Side a, b;
+  Mat2 k_slip;       // tangential block of K at the centre
+  Real k_twist = 0;  // twist block
+  Vec3 start_slip;   // (t1, t2, spin) at the start of the step
+  Real reach = 0;    // sum over points of normal impulse x distance, updated each sweep
+};
+
+// Relative (t1, t2, spin) of B over A at a friction row's centre.
+Vec3 slip(const FrictionRow& f, const PatchFriction& p) {
+  const Vec3 dv = f.b.point_velocity() - f.a.point_velocity();
+  return Vec3(p.tangent1.dot(dv), p.tangent2.dot(dv), p.normal.dot(f.b.spin() - f.a.spin()));
 }
 
-namespace {
+// Applies a friction impulse (t1, t2, twist) on B, its opposite on A.
+void apply_friction(FrictionRow& f, const PatchFriction& p, const Vec3& d) {
+  const Vec3 j = d.x() * p.tangent1 + d.y() * p.tangent2, h = d.z() * p.normal;
+  f.b.apply(j, h);
+  f.a.apply(-j, -h);
+}
 
-// Projected Gauss-Seidel sweeps from the impulses already applied to the rows' bodies.
-SolverReport sweep(std::vector<Row>& rows, const SolverSettings& settings,
-                   std::vector<PointImpulse>& impulses) {
+// The unconstrained minimiser of one block of friction, then scaled into its limit. If sticking
+// would push along the slip the contact started the step with (the load turns it round within
+// the step), that impulse would add the energy dt/2 f.(u_start + u_after); the block then asks
+// for the slip to end as it started, mirrored, which adds none.
+template <class Vec, class Mat>
+Vec friction_block(const Vec& now, const Vec& velocity, const Vec& start, const Mat& k,
+                   Real limit) {
+  Vec f = now - k.ldlt().solve(velocity);
+  if (f.dot(start) > 0) f = now - k.ldlt().solve(velocity + start);
+  const Real size = f.norm();
+  if (size > limit) f *= limit / size;
+  return f;
+}
+
+SolverReport sweep(std::vector<NormalRow>& rows, std::vector<FrictionRow>& friction,
+                   std::vector<PatchFriction>& patches, const std::vector<ContactPoint>& points,
+                   const SolverSettings& settings, std::vector<PointImpulse>& impulses) {
   SolverReport report;
   const Real mu = settings.friction;
   for (report.sweeps = 1; report.sweeps <= settings.max_sweeps; ++report.sweeps) {
     Real largest_change = 0, largest = 0;
+    // Normal impulses, point by point: minimise along the normal, clamp at zero.
     for (size_t i = 0; i < rows.size(); ++i) {
-      Row& row = rows[i];
-      PointImpulse& p = impulses[i];
-      const PointImpulse before = p;
-      // Normal: minimise along it, clamp at zero.
-      Vec3 u = row.frame.transpose() * (point_velocity(row.b) - point_velocity(row.a));
-      if (row.k(0, 0) > 0) {
-        const Real normal = std::max<Real>(0, p.normal - (u.x() - row.target) / row.k(0, 0));
-        const Real dn = normal - p.normal;
-        p.normal = normal;
-        apply(row.b, dn * row.frame.col(0));
-        apply(row.a, -dn * row.frame.col(0));
-      }
-      // Tangent: the 2x2 minimiser, projected on the disc |t| <= mu * normal.
-      if (mu > 0 && p.normal > 0) {
-        u = row.frame.transpose() * (point_velocity(row.b) - point_velocity(row.a));
-        const Eigen::Matrix<Real, 2, 2> ktt = row.k.bottomRightCorner<2, 2>();
-        const Eigen::LDLT<Eigen::Matrix<Real, 2, 2>> solve(ktt);
-        const Eigen::Matrix<Real, 2, 1> now(p.t1, p.t2);
-        Eigen::Matrix<Real, 2, 1> t = now - solve.solve(u.tail<2>());
-        // Sticking would push along the slip the point started the step with (the load turns
-        // it round within the step): that impulse would add energy dt/2 t.(u_start + u_after).
-        // Ask instead for the slip to end as it started, mirrored, which adds none.
-        if (t.dot(row.start_slip) > 0) t = now - solve.solve(u.tail<2>() + row.start_slip);
-        const Real limit = mu * p.normal;
-        if (t.norm() > limit) t *= limit / t.norm();
-        const Vec3 dj = row.frame.col(1) * (t.x() - p.t1) + row.frame.col(2) * (t.y() - p.t2);
+      NormalRow& row = rows[i];
+      if (!(row.k > 0)) continue;
+      const Real u = row.normal.dot(row.b.point_velocity() - row.a.point_velocity());
+      const Real before = impulses[i].normal;
+      const Real after = std::max<Real>(0, before - (u - row.target) / row.k);
+      impulses[i].normal = after;
+      row.b.apply((after - before) * row.normal, Vec3::Zero());
+      row.a.apply((before - after) * row.normal, Vec3::Zero());
+      largest_change = std::max(largest_change, std::abs(after - before));
+      largest = std::max(largest, after);
+    }
+    // Friction, patch by patch: tangential, then twist, each within its Coulomb limit.
+    if (mu > 0) {
+      for (size_t k = 0; k < patches.size(); ++k) {
+        PatchFriction& p = patches[k];
+        FrictionRow& f = friction[k];
+        Real total = 0, reach = 0;
+        for (int i = p.first; i < p.last; ++i) {
+          total += impulses[i].normal;
+          reach += impulses[i].normal * (points[i].point - p.centre).norm();
+        }
+        const Vec3 before(p.t1, p.t2, p.twist);
+        Vec3 u = slip(f, p);
+        const Vec2 t = friction_block<Vec2, Mat2>(Vec2(p.t1, p.t2), u.head<2>(),
+                                                  f.start_slip.head<2>(), f.k_slip, mu * total);
+        apply_friction(f, p, Vec3(t.x() - p.t1, t.y() - p.t2, 0));
         p.t1 = t.x();
         p.t2 = t.y();
-        apply(row.b, dj);
-        apply(row.a, -dj);
-      } else if (p.t1 != 0 || p.t2 != 0) {
-        const Vec3 dj = -(row.frame.col(1) * p.t1 + row.frame.col(2) * p.t2);
-        p.t1 = p.t2 = 0;
-        apply(row.b, dj);
-        apply(row.a, -dj);
+        if (f.k_twist > 0) {
+          u = slip(f, p);
+          const Eigen::Matrix<Real, 1, 1> twist = friction_block<Eigen::Matrix<Real, 1, 1>,
+                                                                 Eigen::Matrix<Real, 1, 1>>(
+              Eigen::Matrix<Real, 1, 1>(p.twist), Eigen::Matrix<Real, 1, 1>(u.z()),
+              Eigen::Matrix<Real, 1, 1>(f.start_slip.z()),
+              Eigen::Matrix<Real, 1, 1>(f.k_twist), mu * reach);
+          apply_friction(f, p, Vec3(0, 0, twist(0) - p.twist));
+          p.twist = twist(0);
+        }
+        const Vec3 after(p.t1, p.t2, p.twist);
+        // Twist is an impulse times a length: compare it on the patch's own scale.
+        const Real scale = reach > 0 && total > 0 ? total / reach : 0;
+        largest_change = std::max(largest_change, (after - before).head<2>().norm() +
+                                                      scale * std::abs(after.z() - before.z()));
+        largest = std::max(largest, after.head<2>().norm());
       }
-      const Real change = std::abs(p.normal - before.normal) + std::abs(p.t1 - before.t1) +
-                          std::abs(p.t2 - before.t2);
-      largest_change = std::max(largest_change, change);
-      largest = std::max(largest, std::abs(p.normal) + std::hypot(p.t1, p.t2));
     }
     report.change = largest > 0 ? largest_change / largest : 0;
     if (report.change <= settings.tolerance) return report;
@@ -140,52 +167,77 @@ Real energy_change(const std::vector<BodyResponse>& now, const std::vector<BodyR
 
 }  // namespace
 
-SolverReport solve_semm(const std::vector<ContactPoint>& points,
-                        const std::vector<Vec3>& start, const std::vector<BodyResponse>& input,
-                        const std::vector<Vec3>& centres, const SolverSettings& settings,
+Vec3 relative_velocity(const std::vector<BodyResponse>& bodies, const std::vector<Vec3>& centres,
+                       const ContactPoint& c) {
+  auto velocity = [&](int body) -> Vec3 {
+    if (body < 0) return Vec3::Zero();
+    const BodyResponse& r = bodies[body];
+    return r.velocity + r.angular_velocity.cross(c.point - centres[body]);
+  };
+  return velocity(c.body_b) - velocity(c.body_a);
+}
+
+SolverReport solve_semm(const std::vector<ContactPoint>& points, const std::vector<Real>& start,
+                        const std::vector<BodyResponse>& input, const std::vector<Vec3>& centres,
+                        const SolverSettings& settings, std::vector<PatchFriction>& patches,
                         std::vector<PointImpulse>& impulses) {
   const size_t n = points.size();
   impulses.resize(n);
   if (n == 0) return SolverReport{};
   std::vector<BodyResponse> bodies = input;  // pseudo velocities, updated in place
 
-  std::vector<Row> rows(n);
+  std::vector<NormalRow> rows(n);
   for (size_t i = 0; i < n; ++i) {
     const ContactPoint& c = points[i];
-    Row& row = rows[i];
+    NormalRow& row = rows[i];
     row.a = side_of(bodies, centres, c.body_a, c.point);
     row.b = side_of(bodies, centres, c.body_b, c.point);
-    row.frame.col(0) = c.normal;
-    row.frame.col(1) = c.tangent1;
-    row.frame.col(2) = c.tangent2;
-    row.k = row.frame.transpose() * (point_response(row.a) + point_response(row.b)) * row.frame;
+    row.normal = c.normal;
+    row.k = c.normal.dot(row.b.response(c.normal, Vec3::Zero()).first +
+                         row.a.response(c.normal, Vec3::Zero()).first);
     // The normal relative velocity required after the step. An impact (approach faster than
     // the threshold) leaves at e times its approach speed; resting contact must not approach;
     // a point already separating may close again as fast as it was opening, no faster. Why the
     // last: over a step the contact impulse does the work dt/2 lambda (u_start + u_after), so a
     // push on a separating point (u_start > 0, u_after = 0) would add energy; with
     // u_after >= -u_start it adds none, and impacts and resting contacts only take energy out.
-    const Real closing = -start[i].x();
-    row.start_slip = start[i].tail<2>();
+    const Real closing = -start[i];
     row.target = closing > settings.restitution_threshold ? settings.restitution * closing
                  : closing < 0                            ? closing
                                                           : 0;
   }
-  // Warm start: apply the initial guess.
+  std::vector<FrictionRow> friction(patches.size());
+  for (size_t k = 0; k < patches.size(); ++k) {
+    PatchFriction& p = patches[k];
+    FrictionRow& f = friction[k];
+    f.a = side_of(bodies, centres, p.body_a, p.centre);
+    f.b = side_of(bodies, centres, p.body_b, p.centre);
+    f.start_slip = p.start_slip;
+    // K's blocks by probing both sides with unit impulses (the response is linear).
+    const Vec3 e[3] = {p.tangent1, p.tangent2, p.normal};
+    for (int c = 0; c < 2; ++c) {
+      const auto [dvb, dwb] = f.b.response(e[c], Vec3::Zero());
+      const auto [dva, dwa] = f.a.response(e[c], Vec3::Zero());
+      for (int r = 0; r < 2; ++r) f.k_slip(r, c) = e[r].dot(dvb + dva);
+    }
+    f.k_twist = p.normal.dot(f.b.response(Vec3::Zero(), p.normal).second +
+                             f.a.response(Vec3::Zero(), p.normal).second);
+    p.t1 = p.t2 = p.twist = 0;
+  }
+  // Warm start: apply the initial normal impulses.
   bool warm = false;
   for (size_t i = 0; i < n; ++i) {
-    const PointImpulse& p = impulses[i];
-    const Vec3 j = rows[i].frame * Vec3(p.normal, p.t1, p.t2);
-    warm = warm || p.normal != 0 || p.t1 != 0 || p.t2 != 0;
-    apply(rows[i].b, j);
-    apply(rows[i].a, -j);
+    warm = warm || impulses[i].normal != 0;
+    rows[i].b.apply(impulses[i].normal * rows[i].normal, Vec3::Zero());
+    rows[i].a.apply(-impulses[i].normal * rows[i].normal, Vec3::Zero());
   }
-  SolverReport report = sweep(rows, settings, impulses);
+  SolverReport report = sweep(rows, friction, patches, points, settings, impulses);
   if (!report.converged && warm && energy_change(bodies, input) > 0) {
     std::copy(input.begin(), input.end(), bodies.begin());  // the rows point into `bodies`
     std::fill(impulses.begin(), impulses.end(), PointImpulse{});
+    for (PatchFriction& p : patches) p.t1 = p.t2 = p.twist = 0;
     const int first_sweeps = report.sweeps;
-    report = sweep(rows, settings, impulses);
+    report = sweep(rows, friction, patches, points, settings, impulses);
     report.sweeps += first_sweeps;
   }
   return report;

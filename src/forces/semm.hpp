@@ -8,8 +8,9 @@
 //   asks for the normal relative velocity after the step to be at least -e times the one
 //   before (an impact), and nothing otherwise (resting contact). This convex quadratic
 //   programme is solved by projected Gauss-Seidel: contact by contact, the normal impulse is
-//   the unconstrained minimiser clamped at 0, the tangential one the 2x2 minimiser projected on
-//   the cone's disc. Each sweep lowers T; it stops when no impulse changed by more than
+//   the unconstrained minimiser clamped at 0; each patch's friction (PatchFriction) is the
+//   2x2 minimiser of its tangential impulse scaled into the disc mu * (patch normal impulse),
+//   then the minimiser of its twist clamped likewise. Each sweep lowers T; it stops when no impulse changed by more than
 //   `tolerance` of the largest, and reports the sweeps and that last change.
 //
 // - semm-paper: the paper's K S = D (eqs. 30-31, 36-39): normal direction only, one point per
@@ -23,12 +24,29 @@
 
 namespace tem {
 
-// Impulse at one contact point, in its frame (normal, tangent1, tangent2). The impulse on B is
-// normal * n + t1 * tangent1 + t2 * tangent2; on A its opposite.
+// Normal impulse at one contact point: on B along +normal, on A along -normal.
 struct PointImpulse {
   Real normal = 0;
-  Real t1 = 0;
-  Real t2 = 0;
+};
+
+// Friction of one patch, acting at its centre in its frame: a tangential impulse (t1, t2) on B
+// (the opposite on A) and a twisting impulse about the normal. Why per patch and not per point:
+// a face resting on an incline at the friction angle needs every point's friction at its limit
+// and pointing the same way; per-point friction makes that a degenerate problem that an
+// iterative solver approaches only asymptotically (the box creeps), while the patch's total
+// friction limit mu * (sum of its normal impulses) is met exactly by one 2x2 solve. The twist is
+// limited by mu * sum(normal impulse x distance from the centre), the most torque the points'
+// friction could give.
+struct PatchFriction {
+  int first = 0, last = 0;  // its points: [first, last)
+  int body_a = -1, body_b = -1;
+  Vec3 centre = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ(), tangent1 = Vec3::UnitX(), tangent2 = Vec3::UnitY();
+  // Relative velocity (B minus A) at the centre along tangent1, tangent2 and relative spin about
+  // the normal, at the start of the step.
+  Vec3 start_slip = Vec3::Zero();
+  // Results.
+  Real t1 = 0, t2 = 0, twist = 0;
 };
 
 struct SolverSettings {
@@ -36,7 +54,7 @@ struct SolverSettings {
   Real restitution = 0;
   Real restitution_threshold = 0;  // approach speeds below this are resting contact (e = 0)
   int max_sweeps = 500;
-  Real tolerance = 1e-7;  // relative change of the impulses that ends the sweeps
+  Real tolerance = 1e-9;  // relative change of the impulses that ends the sweeps
 };
 
 struct SolverReport {
@@ -50,14 +68,15 @@ struct SolverReport {
 Vec3 relative_velocity(const std::vector<BodyResponse>& bodies, const std::vector<Vec3>& centres,
                        const ContactPoint& c);
 
-// Default SEMM by projected Gauss-Seidel. `start` holds, per point, the relative velocity at
-// the start of the step in the point's frame (for restitution and the energy rule). `impulses` is the starting guess (warm start)
+// Default SEMM by projected Gauss-Seidel. `start` holds, per point, the normal relative velocity
+// at the start of the step (for restitution and the energy rule); `patches` the friction of each
+// patch (their results are written there). `impulses` is the starting guess (warm start)
 // and the result. Should the sweeps stop short of convergence with more energy than no impulse
 // at all would leave (a warm start that no longer fits), the solve starts again from zero,
 // from where every sweep can only lower the energy.
-SolverReport solve_semm(const std::vector<ContactPoint>& points,
-                        const std::vector<Vec3>& start, const std::vector<BodyResponse>& bodies,
-                        const std::vector<Vec3>& centres, const SolverSettings& settings,
+SolverReport solve_semm(const std::vector<ContactPoint>& points, const std::vector<Real>& start,
+                        const std::vector<BodyResponse>& bodies, const std::vector<Vec3>& centres,
+                        const SolverSettings& settings, std::vector<PatchFriction>& patches,
                         std::vector<PointImpulse>& impulses);
 
 // The paper's unconstrained normal-only SEMM: K S = D, solved directly.

@@ -42,11 +42,9 @@ void warm_start(const std::vector<ContactPoint>& previous,
         }
       }
       if (best == old_last) continue;
-      const ContactPoint& o = previous[best];
-      const PointImpulse& p = previous_impulses[best];
-      const Vec3 j = p.normal * o.normal + p.t1 * o.tangent1 + p.t2 * o.tangent2;
-      const ContactPoint& c = points[i];
-      impulses[i] = {std::max<Real>(0, j.dot(c.normal)), j.dot(c.tangent1), j.dot(c.tangent2)};
+      // The old normal impulse, kept where the normal has not turned away.
+      const Real along = previous[best].normal.dot(points[i].normal);
+      impulses[i].normal = std::max<Real>(0, previous_impulses[best].normal * along);
     }
     first = last;
   }

@@ -1,8 +1,8 @@
 // Warm start of the contact solver: a contact that persists from one step to the next (a body
 // resting, sliding or rolling) needs nearly the same impulse again, so the solver starts from
 // the last step's. A point is the same contact when it joins the same two bodies (or body and
-// wall) and lies within `radius` of where it was; its old impulse vector is re-expressed in the
-// new point's frame.
+// wall) and lies within `radius` of where it was; its old normal impulse is the guess (friction
+// starts from zero: per patch it is a small direct solve).
 #pragma once
 
 #include <vector>

@@ -1,0 +1,69 @@
+// Helpers for tests that run scenes: step a model and watch what the physics tests measure.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <string>
+
+#include "io/scene_reader.hpp"
+#include "world/step.hpp"
+
+namespace tem::testing_support {
+
+// Prints a figure the way the validation page collects them, and records it in the XML report.
+inline void report(const std::string& key, Real value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  std::cout << "[ measured ] " << key << " = " << text << "\n";
+  ::testing::Test::RecordProperty(key, text);
+}
+
+// What a run measured over all its steps.
+struct Watch {
+  Real largest_energy_rise = 0;  // over one step
+  Real deepest = 0;              // deepest patch seen at any step
+  long long steps = 0;
+};
+
+// Steps `model` from `state` for `duration`, calling `each(state, workspace)` after every step.
+template <class Each>
+Watch simulate(const Model& model, State& state, Real duration, Each each) {
+  Workspace w;
+  Watch watch;
+  const long long n = std::llround(duration / model.scene.time_step);
+  Real energy = system_energies(model, state).total();
+  for (long long k = 0; k < n; ++k) {
+    find_contact_forces(model, state, w);
+    for (const ContactPatch& p : w.patches) watch.deepest = std::max(watch.deepest, p.depth);
+    advance(model, state, w);
+    const Real next = system_energies(model, state).total();
+    watch.largest_energy_rise = std::max(watch.largest_energy_rise, next - energy);
+    energy = next;
+    ++watch.steps;
+    each(state, w);
+  }
+  return watch;
+}
+
+inline Watch simulate(const Model& model, State& state, Real duration) {
+  return simulate(model, state, duration, [](const State&, const Workspace&) {});
+}
+
+// A scene file of the repository, read and built (the test fails if it has problems).
+inline Model load_scene(const std::string& relative) {
+  const SceneReadResult read = read_scene_file(std::string(TEM_SOURCE_DIR) + "/" + relative);
+  EXPECT_TRUE(read.ok()) << relative;
+  return build_model(read.scene);
+}
+
+// Angle (degrees) between a body's axis (a body-frame unit vector) and the world's z.
+inline Real tilt_degrees(const BodyState& s, const Vec3& body_axis) {
+  const Vec3 axis = (s.g * body_axis).normalized();
+  return std::acos(std::min<Real>(1, std::abs(axis.z()))) * 180 / 3.14159265358979323846;
+}
+
+}  // namespace tem::testing_support

@@ -1,0 +1,148 @@
+// Physics of the default mode against closed forms: a box at rest, sliding and sticking on an
+// incline, bouncing with a restitution; the energy of every contact scene never rises. Every
+// number comes from the run; the expectations are textbook formulas.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "support/simulate.hpp"
+
+namespace tem {
+namespace {
+
+using testing_support::report;
+using testing_support::simulate;
+
+constexpr Real kG = earth_gravity_cgs;
+
+// A 0.2 x 0.2 x 0.1 box (density 1) on the floor plane z = 0, bottom face at z = lift.
+SceneDef box_on_floor(Real lift, Real friction, Real restitution, Real dt) {
+  SceneDef scene;
+  scene.time_step = dt;
+  scene.contact.friction = friction;
+  scene.contact.restitution = restitution;
+  scene.walls.push_back({Vec3::Zero(), Vec3::UnitZ()});
+  BodyDef box;
+  box.name = "box";
+  box.shape.type = ShapeType::box;
+  box.shape.size = Vec3(0.2, 0.2, 0.1);
+  box.position = Vec3(0, 0, 0.05 + lift);
+  scene.bodies.push_back(box);
+  return scene;
+}
+
+// Energy scale of a box scene for "round-off": M g times 1 cm.
+Real energy_scale(const Model& model) { return model.bodies[0].inertia.mass * kG * 1.0; }
+
+Real rotation_angle(const Mat3& g) {
+  return Eigen::AngleAxis<Real>(Mat3(g)).angle();
+}
+
+// A box set down on the floor stays: it sinks by what one step of free fall takes before its
+// contact is found (half g dt^2 in that step, as much in the next while the contact stops it:
+// g dt^2 in all, to round-off), and neither drifts nor turns, for 2 s (round-off only: 2e4 steps
+// of 1e-16).
+TEST(Physics, BoxRestsOnTheFloor) {
+  const Real dt = 1e-4;
+  const Model model = build_model(box_on_floor(0, 0.3, 0, dt));
+  State state = initial_state(model);
+  const Vec3 x0 = state.bodies[0].x;
+  Real sink = 0, drift = 0, turn = 0;
+  const auto watch = simulate(model, state, 2.0, [&](const State& s, const Workspace&) {
+    sink = std::max(sink, x0.z() - s.bodies[0].x.z());
+    drift = std::max(drift, (s.bodies[0].x - x0).head<2>().norm());
+    turn = std::max(turn, rotation_angle(s.bodies[0].g));
+  });
+  report("box at rest: deepest sink (cm)", sink);
+  report("box at rest: drift (cm)", drift);
+  report("box at rest: rotation (rad)", turn);
+  report("box at rest: largest energy rise / (M g 1cm)", watch.largest_energy_rise / energy_scale(model));
+  EXPECT_LE(sink, kG * dt * dt * (1 + 1e-9));
+  EXPECT_LE(drift, 1e-11);
+  EXPECT_LE(turn, 1e-11);
+  EXPECT_LE(watch.largest_energy_rise, 1e-12 * energy_scale(model));
+}
+
+// An incline of atan(0.5), made by turning gravity (the floor stays z = 0, gravity gets the
+// component g sin(theta) along +x). With friction mu < tan(theta) the box slides with
+// a = g (sin - mu cos); with mu = tan(theta) = 0.5 static friction holds it exactly; without
+// friction a = g sin(theta).
+struct InclineResult {
+  Real acceleration = 0;
+  Real travel = 0;
+  Real energy_rise = 0;
+  Real scale = 0;
+};
+
+InclineResult incline(Real friction) {
+  const Real theta = std::atan(0.5);
+  SceneDef scene = box_on_floor(0, friction, 0, 1e-4);
+  scene.gravity = kG * Vec3(std::sin(theta), 0, -std::cos(theta));
+  const Model model = build_model(scene);
+  State state = initial_state(model);
+  const Real x0 = state.bodies[0].x.x();
+  Real v_quarter = 0;
+  const auto watch = simulate(model, state, 0.5, [&](const State& s, const Workspace&) {
+    if (s.step == 2500) v_quarter = s.bodies[0].v.x();
+  });
+  InclineResult r;
+  r.acceleration = (state.bodies[0].v.x() - v_quarter) / 0.25;
+  r.travel = state.bodies[0].x.x() - x0;
+  r.energy_rise = watch.largest_energy_rise;
+  r.scale = energy_scale(model);
+  return r;
+}
+
+TEST(Physics, InclineSlidesWithCoulombFriction) {
+  const Real theta = std::atan(0.5);
+  const InclineResult r = incline(0.49);
+  const Real expected = kG * (std::sin(theta) - 0.49 * std::cos(theta));
+  report("incline mu 0.49: acceleration / g (sin - mu cos)", r.acceleration / expected);
+  EXPECT_NEAR(r.acceleration / expected, 1, 0.02);
+  EXPECT_LE(r.energy_rise, 1e-12 * r.scale);
+}
+
+// At the friction angle the box moves only in the first step, before its contact exists, and
+// the step after, while friction stops it: g sin(theta) dt^2 (as the box at rest sinks g dt^2);
+// then it holds, but for round-off creep (the friction it needs is exactly its limit), asked to
+// stay below 1e-10 cm, a billionth of the box, over the 5000 steps.
+TEST(Physics, InclineHoldsAtTheFrictionAngle) {
+  const Real theta = std::atan(0.5), dt = 1e-4;
+  const InclineResult r = incline(0.5);
+  report("incline mu 0.5: travel in 0.5 s (cm)", r.travel);
+  report("incline mu 0.5: travel beyond g sin dt^2 (cm)", r.travel - kG * std::sin(theta) * dt * dt);
+  EXPECT_LE(std::abs(r.travel), kG * std::sin(theta) * dt * dt + 1e-10);
+  EXPECT_LE(r.energy_rise, 1e-12 * r.scale);
+}
+
+TEST(Physics, InclineWithoutFrictionSlidesFreely) {
+  const Real theta = std::atan(0.5);
+  const InclineResult r = incline(0);
+  report("incline frictionless: acceleration / (g sin)", r.acceleration / (kG * std::sin(theta)));
+  EXPECT_NEAR(r.acceleration / (kG * std::sin(theta)), 1, 0.01);
+  EXPECT_LE(r.energy_rise, 1e-12 * r.scale);
+}
+
+// Dropped flat from 0.1 cm, with restitution 0.5 the box leaves the floor at half the speed
+// it hit it with.
+TEST(Physics, BoxReboundsWithItsRestitution) {
+  const Real drop = 0.1;
+  const Model model = build_model(box_on_floor(drop, 0.3, 0.5, 1e-5));
+  State state = initial_state(model);
+  Real impact = 0, rebound = 0;
+  bool touched = false;
+  simulate(model, state, 0.25, [&](const State& s, const Workspace& w) {
+    const Real vz = s.bodies[0].v.z();
+    if (!touched) impact = std::min(impact, vz);
+    touched = touched || !w.patches.empty();
+    if (touched) rebound = std::max(rebound, vz);
+  });
+  report("rebound: impact speed (cm/s)", -impact);
+  report("rebound: speed ratio", rebound / -impact);
+  EXPECT_NEAR(-impact, std::sqrt(2 * kG * drop), 0.01 * std::sqrt(2 * kG * drop));
+  EXPECT_NEAR(rebound / -impact, 0.5, 0.03);
+}
+
+}  // namespace
+}  // namespace tem
