@@ -144,8 +144,10 @@ TEST(Semm, PaperSolveAdheresDefaultDoesNot) {
   std::vector<PointImpulse> paper, semm(1);
   solve_semm_paper({c}, bodies, {Vec3(0, 0, 0.1)}, paper);
   EXPECT_NEAR(paper[0].normal, -2, 1e-12);  // M * 1 pulled back
-  std::vector<PatchFriction> no_friction;
-  solve_semm({c}, {-1}, bodies, {Vec3(0, 0, 0.1)}, SolverSettings{}, no_friction, semm);
+  std::vector<PatchFriction> patch(1);
+  patch[0].last = 1;
+  patch[0].body_a = 0;
+  solve_semm({c}, {-1}, bodies, {Vec3(0, 0, 0.1)}, SolverSettings{}, patch, semm);
   EXPECT_EQ(semm[0].normal, 0);
 }
 

@@ -40,6 +40,7 @@ void start_velocities(const Model& model, const State& state,
     p.last = static_cast<int>(i);
     p.body_a = c.body_a;
     p.body_b = c.body_b;
+    p.wall = c.wall;
     p.centre = patches[c.patch].point;
     p.normal = c.normal;
     p.tangent1 = c.tangent1;
@@ -73,6 +74,7 @@ void compute_contact_forces(const Model& model, const State& state,
   f.patch_forces.assign(patches.size(), PatchForce{});
   std::swap(f.previous_points, f.points);
   std::swap(f.previous_impulses, f.impulses);
+  std::swap(f.previous_friction, f.friction);
   f.points.clear();
   f.impulses.clear();
   f.solver = SolverReport{};
@@ -97,6 +99,7 @@ void compute_contact_forces(const Model& model, const State& state,
     settings.restitution_threshold = 2 * scene.gravity.norm() * dt;
     if (f.match_radius.size() != n_bodies) match_radii(model, f.match_radius);
     warm_start(f.previous_points, f.previous_impulses, f.points, f.match_radius, f.impulses);
+    warm_start_friction(f.previous_friction, f.match_radius, f.friction);
     f.solver = solve_semm(f.points, f.approach, f.responses, f.centres, settings, f.friction,
                           f.impulses);
   }

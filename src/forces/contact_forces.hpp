@@ -31,6 +31,7 @@ struct ContactForces {
   // be the same contact, per body (1% of its size).
   std::vector<ContactPoint> previous_points;
   std::vector<PointImpulse> previous_impulses;
+  std::vector<PatchFriction> previous_friction;
   std::vector<Real> match_radius;
   // Results: per body, world force and torque about its centre of mass, held through the step.
   std::vector<Vec3> force, torque;

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace tem {
@@ -45,6 +46,67 @@ Side side_of(std::vector<BodyResponse>& bodies, const std::vector<Vec3>& centres
   return s;
 }
 
+// The normal impulses of one patch are solved together: the points of one patch push on the
+// same two bodies and are strongly coupled (a tall column on its end rocks on them), which
+// point-by-point Gauss-Seidel resolves only after thousands of sweeps. A patch has at most
+// eight points (contact_points.hpp).
+constexpr int kMaxBlock = 8;
+using BlockMatrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxBlock, kMaxBlock>;
+using BlockVector = Eigen::Matrix<Real, Eigen::Dynamic, 1, 0, kMaxBlock, 1>;
+
+// min 1/2 x.K x + q.x over x >= 0 (K symmetric positive semi-definite), by the active-set
+// method of Lawson and Hanson, from the feasible start x. Redundant points make K singular; a
+// regularisation of 1e-13 of its diagonal picks one of the equivalent answers.
+void solve_block(const BlockMatrix& k, const BlockVector& q, BlockVector& x) {
+  const int m = static_cast<int>(q.size());
+  const Real eps = 1e-13 * std::max<Real>(k.diagonal().maxCoeff(), 1e-300);
+  const Real tolerance = 1e-12 * std::max<Real>(q.cwiseAbs().maxCoeff(), 1e-300);
+  std::array<bool, kMaxBlock> free{};
+  for (int i = 0; i < m; ++i) free[i] = x(i) > 0;
+  for (int outer = 0; outer < 3 * m + 3; ++outer) {
+    // Optimal on the free set, staying feasible.
+    for (int inner = 0; inner <= m; ++inner) {
+      std::array<int, kMaxBlock> index{};
+      int f = 0;
+      for (int i = 0; i < m; ++i)
+        if (free[i]) index[f++] = i;
+      BlockVector z = BlockVector::Zero(m);
+      if (f > 0) {
+        BlockMatrix kf(f, f);
+        BlockVector qf(f);
+        for (int r = 0; r < f; ++r) {
+          qf(r) = q(index[r]);
+          for (int c = 0; c < f; ++c) kf(r, c) = k(index[r], index[c]);
+          kf(r, r) += eps;
+        }
+        const BlockVector zf = kf.ldlt().solve(-qf);
+        for (int r = 0; r < f; ++r) z(index[r]) = zf(r);
+      }
+      Real alpha = 1;
+      for (int i = 0; i < m; ++i)
+        if (free[i] && z(i) <= 0) alpha = std::min(alpha, x(i) / (x(i) - z(i)));
+      x += alpha * (z - x);
+      if (alpha >= 1) break;
+      for (int i = 0; i < m; ++i)
+        if (free[i] && x(i) <= 0) {
+          x(i) = 0;
+          free[i] = false;
+        }
+    }
+    // The most negative gradient among the bound points joins the free set.
+    const BlockVector w = k * x + q;
+    int join = -1;
+    Real most = -tolerance;
+    for (int i = 0; i < m; ++i)
+      if (!free[i] && w(i) < most) {
+        most = w(i);
+        join = i;
+      }
+    if (join < 0) return;
+    free[join] = true;
+  }
+}
+
 struct NormalRow {
   Side a, b;
   Vec3 normal;
@@ -55,6 +117,7 @@ struct NormalRow {
 
 struct FrictionRow {
   Side a, b;
+  BlockMatrix k_normal;  // n_i.K n_j of the patch's points
   Mat2 k_slip;       // tangential block of K at the centre
   Real k_twist = 0;  // twist block
   Vec3 start_slip;   // (t1, t2, spin) at the start of the step
@@ -95,18 +158,29 @@ SolverReport sweep(std::vector<NormalRow>& rows, std::vector<FrictionRow>& frict
   const Real mu = settings.friction;
   for (report.sweeps = 1; report.sweeps <= settings.max_sweeps; ++report.sweeps) {
     Real largest_change = 0, largest = 0;
-    // Normal impulses, point by point: minimise along the normal, clamp at zero.
-    for (size_t i = 0; i < rows.size(); ++i) {
-      NormalRow& row = rows[i];
-      if (!(row.k > 0)) continue;
-      const Real u = row.normal.dot(row.b.point_velocity() - row.a.point_velocity());
-      const Real before = impulses[i].normal;
-      const Real after = std::max<Real>(0, before - (u - row.target) / row.k);
-      impulses[i].normal = after;
-      row.b.apply((after - before) * row.normal, Vec3::Zero());
-      row.a.apply((before - after) * row.normal, Vec3::Zero());
-      largest_change = std::max(largest_change, std::abs(after - before));
-      largest = std::max(largest, after);
+    // Patch by patch: its normal impulses together (non-negative, exact for the block), then
+    // its friction, tangential and twist, each within its Coulomb limit.
+    for (size_t k = 0; k < patches.size(); ++k) {
+      const PatchFriction& p = patches[k];
+      const int m = p.last - p.first;
+      BlockVector now(m), q(m);
+      for (int r = 0; r < m; ++r) {
+        const NormalRow& row = rows[p.first + r];
+        now(r) = impulses[p.first + r].normal;
+        q(r) = row.normal.dot(row.b.point_velocity() - row.a.point_velocity()) - row.target;
+      }
+      q -= friction[k].k_normal * now;  // the velocities without this block's impulses
+      BlockVector after = now;
+      solve_block(friction[k].k_normal, q, after);
+      for (int r = 0; r < m; ++r) {
+        NormalRow& row = rows[p.first + r];
+        const Real d = after(r) - now(r);
+        impulses[p.first + r].normal = after(r);
+        row.b.apply(d * row.normal, Vec3::Zero());
+        row.a.apply(-d * row.normal, Vec3::Zero());
+        largest_change = std::max(largest_change, std::abs(d));
+        largest = std::max(largest, after(r));
+      }
     }
     // Friction, patch by patch: tangential, then twist, each within its Coulomb limit.
     if (mu > 0) {
@@ -222,14 +296,35 @@ SolverReport solve_semm(const std::vector<ContactPoint>& points, const std::vect
     }
     f.k_twist = p.normal.dot(f.b.response(Vec3::Zero(), p.normal).second +
                              f.a.response(Vec3::Zero(), p.normal).second);
-    p.t1 = p.t2 = p.twist = 0;
+    // The normal block: the change of point i's normal velocity per unit impulse at point j.
+    const int m = p.last - p.first;
+    f.k_normal.resize(m, m);
+    for (int j = 0; j < m; ++j) {
+      const NormalRow& at = rows[p.first + j];
+      for (int i = 0; i < m; ++i) {
+        const NormalRow& row = rows[p.first + i];
+        Real v = 0;
+        for (const auto& [probe, measure] : {std::pair(at.b, row.b), std::pair(at.a, row.a)}) {
+          if (!probe.body) continue;
+          const Vec3 dw = probe.body->angular * probe.arm.cross(at.normal);
+          v += row.normal.dot(probe.body->inverse_mass * at.normal + dw.cross(measure.arm));
+        }
+        f.k_normal(i, j) = v;
+      }
+    }
   }
-  // Warm start: apply the initial normal impulses.
+  // Warm start: apply the initial guesses, normal and friction.
   bool warm = false;
   for (size_t i = 0; i < n; ++i) {
     warm = warm || impulses[i].normal != 0;
     rows[i].b.apply(impulses[i].normal * rows[i].normal, Vec3::Zero());
     rows[i].a.apply(-impulses[i].normal * rows[i].normal, Vec3::Zero());
+  }
+  for (size_t k = 0; k < patches.size(); ++k) {
+    PatchFriction& p = patches[k];
+    if (!(settings.friction > 0)) p.t1 = p.t2 = p.twist = 0;
+    warm = warm || p.t1 != 0 || p.t2 != 0 || p.twist != 0;
+    apply_friction(friction[k], p, Vec3(p.t1, p.t2, p.twist));
   }
   SolverReport report = sweep(rows, friction, patches, points, settings, impulses);
   if (!report.converged && warm && energy_change(bodies, input) > 0) {

@@ -39,13 +39,13 @@ struct PointImpulse {
 // friction could give.
 struct PatchFriction {
   int first = 0, last = 0;  // its points: [first, last)
-  int body_a = -1, body_b = -1;
+  int body_a = -1, body_b = -1, wall = -1;
   Vec3 centre = Vec3::Zero();
   Vec3 normal = Vec3::UnitZ(), tangent1 = Vec3::UnitX(), tangent2 = Vec3::UnitY();
   // Relative velocity (B minus A) at the centre along tangent1, tangent2 and relative spin about
   // the normal, at the start of the step.
   Vec3 start_slip = Vec3::Zero();
-  // Results.
+  // The starting guess (warm start), then the result.
   Real t1 = 0, t2 = 0, twist = 0;
 };
 
@@ -70,7 +70,8 @@ Vec3 relative_velocity(const std::vector<BodyResponse>& bodies, const std::vecto
 
 // Default SEMM by projected Gauss-Seidel. `start` holds, per point, the normal relative velocity
 // at the start of the step (for restitution and the energy rule); `patches` the friction of each
-// patch (their results are written there). `impulses` is the starting guess (warm start)
+// patch (their results are written there); every point belongs to one of them, and a patch has
+// at most eight points. `impulses` is the starting guess (warm start)
 // and the result. Should the sweeps stop short of convergence with more energy than no impulse
 // at all would leave (a warm start that no longer fits), the solve starts again from zero,
 // from where every sweep can only lower the energy.

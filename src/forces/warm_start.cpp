@@ -12,6 +12,11 @@ auto pair_key(const ContactPoint& c) {
   return std::make_tuple(c.body_a, wall, wall ? c.wall : c.body_b);
 }
 
+auto pair_key(const PatchFriction& p) {
+  const bool wall = p.wall >= 0;
+  return std::make_tuple(p.body_a, wall, wall ? p.wall : p.body_b);
+}
+
 }  // namespace
 
 void warm_start(const std::vector<ContactPoint>& previous,
@@ -47,6 +52,29 @@ void warm_start(const std::vector<ContactPoint>& previous,
       impulses[i].normal = std::max<Real>(0, previous_impulses[best].normal * along);
     }
     first = last;
+  }
+}
+
+void warm_start_friction(const std::vector<PatchFriction>& previous,
+                         const std::vector<Real>& radius, std::vector<PatchFriction>& patches) {
+  size_t old_first = 0;
+  for (PatchFriction& p : patches) {
+    p.t1 = p.t2 = p.twist = 0;
+    while (old_first < previous.size() && pair_key(previous[old_first]) < pair_key(p)) ++old_first;
+    Real best_distance = radius[p.body_a];
+    const PatchFriction* best = nullptr;
+    for (size_t k = old_first; k < previous.size() && pair_key(previous[k]) == pair_key(p); ++k) {
+      const Real d = (previous[k].centre - p.centre).norm();
+      if (d < best_distance) {
+        best_distance = d;
+        best = &previous[k];
+      }
+    }
+    if (!best) continue;
+    const Vec3 t = best->t1 * best->tangent1 + best->t2 * best->tangent2;
+    p.t1 = t.dot(p.tangent1);
+    p.t2 = t.dot(p.tangent2);
+    p.twist = best->twist * best->normal.dot(p.normal);
   }
 }
 

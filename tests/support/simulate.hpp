@@ -62,8 +62,10 @@ inline Model load_scene(const std::string& relative) {
 
 // Angle (degrees) between a body's axis (a body-frame unit vector) and the world's z.
 inline Real tilt_degrees(const BodyState& s, const Vec3& body_axis) {
-  const Vec3 axis = (s.g * body_axis).normalized();
-  return std::acos(std::min<Real>(1, std::abs(axis.z()))) * 180 / 3.14159265358979323846;
+  // atan2 of the cross and dot products: exact for small angles, where acos(1 - e) is not.
+  const Vec3 axis = s.g * body_axis;
+  return std::atan2(axis.cross(Vec3::UnitZ()).norm(), std::abs(axis.z())) * 180 /
+         3.14159265358979323846;
 }
 
 }  // namespace tem::testing_support
