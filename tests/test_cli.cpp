@@ -311,5 +311,53 @@ TEST(Cli, ContactsOfTheInitialState) {
   std::filesystem::remove(file);
 }
 
+// `tem run`: a box dropped 1 cm onto the floor for 0.05 s, output every 0.01 s: the four files
+// with the interface's headers, one row per body per output time (t = 0 and 5 more), the same
+// bytes on a second run, and a scene.json that reads back.
+TEST(Cli, RunWritesTheResultFiles) {
+  const std::string scene = kSource + "/tests/scenes/drop_box.json";
+  const std::string dir = testing::TempDir() + "tem_run_" + std::to_string(getpid());
+  const TemRun run = run_tem("run '" + scene + "' --out '" + dir + "' --contacts");
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_TRUE(contains(run.err, "steps/s")) << run.err;
+  auto lines = [](const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) out.push_back(line);
+    return out;
+  };
+  const auto bodies = lines(slurp(dir + "/bodies.csv"));
+  const auto energy = lines(slurp(dir + "/energy.csv"));
+  const auto contacts = lines(slurp(dir + "/contacts.csv"));
+  ASSERT_EQ(bodies.size(), 7u);
+  EXPECT_EQ(bodies[0], "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz");
+  EXPECT_EQ(bodies[1].substr(0, 6), "0,box,");
+  ASSERT_EQ(energy.size(), 7u);
+  EXPECT_EQ(energy[0], "time,kinetic,potential,total,contacts,max_depth");
+  EXPECT_EQ(energy.back().substr(0, 5), "0.05,");
+  ASSERT_GE(contacts.size(), 2u);  // it lands within 0.05 s
+  EXPECT_EQ(contacts[0], "time,body_a,body_b,px,py,pz,nx,ny,nz,depth,fn,ft");
+  EXPECT_EQ(contacts[1].find(",box,wall,") != std::string::npos, true) << contacts[1];
+  const SceneReadResult again = read_scene_file(dir + "/scene.json");
+  EXPECT_TRUE(again.ok());
+
+  const std::string dir2 = dir + "_again";
+  ASSERT_EQ(run_tem("run '" + scene + "' --out '" + dir2 + "'").status, 0);
+  EXPECT_EQ(slurp(dir2 + "/bodies.csv"), slurp(dir + "/bodies.csv"));
+  std::filesystem::remove_all(dir);
+  std::filesystem::remove_all(dir2);
+}
+
+// A penalty scene whose time step is above the contact's stable limit runs, with a warning that
+// says so and what limit to use.
+TEST(Cli, RunWarnsOfAPenaltyTimeStepAboveItsLimit) {
+  const std::string scene = kSource + "/tests/scenes/penalty_coarse.json";
+  const std::string dir = testing::TempDir() + "tem_pen_" + std::to_string(getpid());
+  const TemRun run = run_tem("run '" + scene + "' --out '" + dir + "'");
+  EXPECT_EQ(run.status, 0) << run.err;
+  EXPECT_TRUE(contains(run.err, "warning: time_step")) << run.err;
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace tem

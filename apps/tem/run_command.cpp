@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "forces/penalty.hpp"
 #include "io/run_output.hpp"
 #include "world/step.hpp"
 
@@ -38,6 +39,15 @@ int run_command(const std::string& scene_file, const std::string& out_dir, bool 
   const Model& model = *loaded;
   print_warnings(scene_file, model);
   const SceneDef& scene = model.scene;
+
+  if (scene.contact.model == ContactModel::penalty) {
+    const Real limit = penalty_time_step_limit(model);
+    if (scene.time_step > limit)
+      std::cerr << scene_file << ": warning: time_step " << scene.time_step
+                << " is above the penalty contact's stable limit " << limit
+                << " (a tenth of the contact oscillation period 2 pi sqrt(m/k) of the lightest "
+                   "body); bodies may bounce off or pass through each other\n";
+  }
 
   const long long total_steps = std::llround(scene.duration / scene.time_step);
   const long long every = std::max<long long>(1, std::llround(scene.output.interval / scene.time_step));

@@ -22,6 +22,8 @@ enum class ContactModel { semm, semm_paper, penalty };
 enum class PatchNormals { paper, faces };
 // Where a patch's force acts: one point (the paper), or its extreme overlap corners.
 enum class PatchPoints { one, corners };
+// The penalty model's normal law: F = k d (linear) or F = k d^(3/2) (Hertz).
+enum class PenaltyLaw { linear, hertz };
 
 struct ShapeDef {
   ShapeType type = ShapeType::box;
@@ -66,6 +68,8 @@ struct ContactDef {
   Real restitution = 0.0;
   Real stiffness = 0.0;  // penalty: normal spring constant (0: not given)
   Real damping = 0.0;    // penalty: normal dashpot constant
+  PenaltyLaw law = PenaltyLaw::linear;  // penalty: normal law
+  Real tangential_stiffness = 0.0;      // penalty: tangential spring (the reader fills 2/7 k)
   // Both default to the paper's choice under semm-paper and to the project's otherwise; the
   // reader fills them in, so a SceneDef always says which is used.
   PatchNormals normals = PatchNormals::faces;

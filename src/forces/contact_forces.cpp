@@ -78,6 +78,17 @@ void compute_contact_forces(const Model& model, const State& state,
   f.points.clear();
   f.impulses.clear();
   f.solver = SolverReport{};
+  if (scene.contact.model == ContactModel::penalty) {
+    f.solver.sweeps = 0;
+    for (size_t i = 0; i < patches.size(); ++i)
+      patch_points(patches[i], static_cast<int>(i), scene.contact.points == PatchPoints::one,
+                   f.points);
+    penalty_forces(model, state, patches, f.points, f.springs, f.force, f.torque,
+                   f.normal_magnitude, f.tangential_magnitude);
+    for (size_t k = 0; k < patches.size(); ++k)
+      f.patch_forces[k] = {f.normal_magnitude[k], f.tangential_magnitude[k]};
+    return;
+  }
   if (patches.empty()) return;
 
   const bool paper = scene.contact.model == ContactModel::semm_paper;

@@ -8,6 +8,7 @@
 #include "contact/contact_patch.hpp"
 #include "forces/body_response.hpp"
 #include "forces/contact_points.hpp"
+#include "forces/penalty.hpp"
 #include "forces/semm.hpp"
 #include "world/model.hpp"
 
@@ -33,6 +34,8 @@ struct ContactForces {
   std::vector<PointImpulse> previous_impulses;
   std::vector<PatchFriction> previous_friction;
   std::vector<Real> match_radius;
+  std::vector<PenaltySpring> springs;  // penalty: the tangential springs' memory
+  std::vector<Real> normal_magnitude, tangential_magnitude;
   // Results: per body, world force and torque about its centre of mass, held through the step.
   std::vector<Vec3> force, torque;
   std::vector<PatchForce> patch_forces;  // per patch

@@ -1,5 +1,6 @@
 #include "forces/contact_points.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -37,14 +38,26 @@ void patch_points(const ContactPatch& patch, int index, bool one_per_patch,
       diagonal * (base.tangent1 + base.tangent2),  diagonal * (base.tangent1 - base.tangent2),
       diagonal * (-base.tangent1 + base.tangent2), diagonal * (-base.tangent1 - base.tangent2)};
   const Real size = (patch.bounds_max - patch.bounds_min).norm();
+  Real shallowest = patch.normal.dot(patch.vertices[0]);
+  for (const Vec3& v : patch.vertices) shallowest = std::min(shallowest, patch.normal.dot(v));
   const size_t first = out.size();
+  // A node inside and the crossing of its edge with the other surface lie one above the other:
+  // equally far along a tangent direction. Of such a tie the deeper one is the corner (it bears
+  // the load); taking the crossing would leave that corner without depth.
+  const Real tie = 1e-9 * size;
   for (const Vec3& d : directions) {
     size_t best = 0;
-    for (size_t k = 1; k < patch.vertices.size(); ++k)
-      if (d.dot(patch.vertices[k]) > d.dot(patch.vertices[best])) best = k;
+    for (size_t k = 1; k < patch.vertices.size(); ++k) {
+      const Real reach = d.dot(patch.vertices[k]), best_reach = d.dot(patch.vertices[best]);
+      if (reach > best_reach + tie ||
+          (reach > best_reach - tie &&
+           patch.normal.dot(patch.vertices[k]) > patch.normal.dot(patch.vertices[best])))
+        best = k;
+    }
     const Vec3& v = patch.vertices[best];
     ContactPoint p = base;
     p.point = v - patch.normal.dot(v - patch.point) * patch.normal;
+    p.depth = patch.normal.dot(v) - shallowest;
     bool repeated = false;
     for (size_t k = first; k < out.size() && !repeated; ++k)
       repeated = (out[k].point - p.point).norm() <= 1e-9 * size;

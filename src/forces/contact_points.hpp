@@ -22,7 +22,8 @@ struct ContactPoint {
   Vec3 point;    // world
   Vec3 normal;   // unit, from A into B
   Vec3 tangent1, tangent2;  // with normal, a right-handed orthonormal frame
-  Real depth;    // the patch's depth
+  Real depth;    // the overlap's depth at this point: the patch's for a single point; for a
+                 // corner, how far it lies along the normal beyond the shallowest corner
 };
 
 // Appends the points of patch `index`: one (the patch point) when `one_per_patch`, else the

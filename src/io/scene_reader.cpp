@@ -89,7 +89,8 @@ Mat3 rotation_z_cs(Real c, Real s) {
 const KeyList kSceneKeys = {"gravity",   "time_step", "duration", "integrator", "contact",
                             "container", "walls",     "bodies",   "output"};
 const KeyList kContactKeys = {"model",   "friction", "restitution", "stiffness",
-                              "damping", "normals",  "points"};
+                              "damping", "normals",  "points",      "law",
+                              "tangential_stiffness"};
 const KeyList kContainerKeys = {"min", "max"};
 const KeyList kWallKeys = {"point", "normal"};
 const KeyList kOutputKeys = {"interval", "checkpoint_interval", "paraview"};
@@ -229,6 +230,17 @@ class SceneReader {
     const bool stiffness_ok =
         r_.read_number(j, path, "stiffness", &contact->stiffness, Bound::non_negative);
     r_.read_number(j, path, "damping", &contact->damping, Bound::non_negative);
+    if (const Json* l = Reader::get(j, "law")) {
+      if (auto law = r_.choice<PenaltyLaw>(*l, child(path, "law"),
+                                           {{"linear", PenaltyLaw::linear},
+                                            {"hertz", PenaltyLaw::hertz}})) {
+        contact->law = *law;
+      }
+    }
+    // Cundall and Strack's ratio when not given.
+    contact->tangential_stiffness = 2.0 / 7.0 * contact->stiffness;
+    r_.read_number(j, path, "tangential_stiffness", &contact->tangential_stiffness,
+                   Bound::non_negative);
     // The penalty model has no spring without a stiffness; the others ignore it.
     if (contact->model == ContactModel::penalty) {
       if (!stiffness) {

@@ -184,6 +184,8 @@ Json scene_to_json(const SceneDef& scene) {
                       {"restitution", scene.contact.restitution},
                       {"stiffness", scene.contact.stiffness},
                       {"damping", scene.contact.damping},
+                      {"law", scene.contact.law == PenaltyLaw::hertz ? "hertz" : "linear"},
+                      {"tangential_stiffness", scene.contact.tangential_stiffness},
                       {"normals", scene.contact.normals == PatchNormals::paper ? "paper" : "faces"},
                       {"points", scene.contact.points == PatchPoints::one ? "one" : "corners"}};
   if (scene.container) {

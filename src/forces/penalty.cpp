@@ -1,0 +1,125 @@
+#include "forces/penalty.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace tem {
+namespace {
+
+Vec3 point_velocity(const Model& model, const State& state, int body, const Vec3& p) {
+  if (body < 0 || model.bodies[body].fixed) return Vec3::Zero();
+  const BodyState& s = state.bodies[body];
+  return s.v + s.angular_velocity_world().cross(p - s.x);
+}
+
+Real body_size(const Model& model, int body) {
+  Real size = 0;
+  for (const BlockInstance& i : model.bodies[body].blocks)
+    size = std::max(size, i.offset.norm() + model.blocks[i.block].bounding_radius());
+  return size;
+}
+
+// The spring of the last step for this patch: same pair, nearest within 1% of A's size.
+Vec3 remembered_stretch(const Model& model, const std::vector<PenaltySpring>& old,
+                        const ContactPatch& p) {
+  const Real reach = 0.01 * body_size(model, p.body_a);
+  const PenaltySpring* best = nullptr;
+  Real best_distance = reach;
+  for (const PenaltySpring& s : old) {
+    if (s.body_a != p.body_a || s.body_b != p.body_b || s.wall != p.wall) continue;
+    const Real d = (s.point - p.point).norm();
+    if (d < best_distance) {
+      best_distance = d;
+      best = &s;
+    }
+  }
+  if (!best) return Vec3::Zero();
+  // Turned into the current tangent plane, keeping its length.
+  const Vec3 flat = best->stretch - best->stretch.dot(p.normal) * p.normal;
+  const Real n = flat.norm();
+  return n > 0 ? Vec3(flat * (best->stretch.norm() / n)) : Vec3::Zero();
+}
+
+}  // namespace
+
+void penalty_forces(const Model& model, const State& state,
+                    const std::vector<ContactPatch>& patches,
+                    const std::vector<ContactPoint>& points, std::vector<PenaltySpring>& springs,
+                    std::vector<Vec3>& force, std::vector<Vec3>& torque,
+                    std::vector<Real>& normal_magnitude, std::vector<Real>& tangential_magnitude) {
+  const ContactDef& c = model.scene.contact;
+  const Real dt = model.scene.time_step;
+  const bool hertz = c.law == PenaltyLaw::hertz;
+  std::vector<PenaltySpring> next;
+  next.reserve(patches.size());
+  normal_magnitude.assign(patches.size(), 0);
+  tangential_magnitude.assign(patches.size(), 0);
+  auto push = [&](const ContactPatch& p, const Vec3& at, const Vec3& on_b) {
+    if (!model.bodies[p.body_a].fixed) {
+      force[p.body_a] -= on_b;
+      torque[p.body_a] -= (at - state.bodies[p.body_a].x).cross(on_b);
+    }
+    if (p.body_b >= 0 && !model.bodies[p.body_b].fixed) {
+      force[p.body_b] += on_b;
+      torque[p.body_b] += (at - state.bodies[p.body_b].x).cross(on_b);
+    }
+  };
+  for (size_t i = 0; i < points.size();) {
+    const int k = points[i].patch;
+    const ContactPatch& p = patches[k];
+    const Vec3& n = p.normal;
+    size_t last = i;
+    while (last < points.size() && points[last].patch == k) ++last;
+    // Normal: each point's spring and dashpot, never pulling.
+    const Real share = 1.0 / static_cast<Real>(last - i);
+    Real fn = 0, mean_depth = 0;
+    for (; i < last; ++i) {
+      const ContactPoint& q = points[i];
+      const Real depth = std::max<Real>(q.depth, 0);
+      const Real approach = -n.dot(point_velocity(model, state, p.body_b, q.point) -
+                                   point_velocity(model, state, p.body_a, q.point));
+      const Real spring = hertz ? c.stiffness * depth * std::sqrt(depth) : c.stiffness * depth;
+      const Real dashpot =
+          hertz ? c.damping * std::pow(depth, 0.25) * approach : c.damping * approach;
+      const Real f = share * std::max<Real>(0, spring + dashpot);
+      push(p, q.point, f * n);
+      fn += f;
+      mean_depth += share * depth;
+    }
+    // Tangential: the patch's spring stretches with the slip at its centre; at the Coulomb
+    // limit it slides.
+    const Vec3 u = point_velocity(model, state, p.body_b, p.point) -
+                   point_velocity(model, state, p.body_a, p.point);
+    const Vec3 slip = u - u.dot(n) * n;
+    const Real kt =
+        hertz ? c.tangential_stiffness * std::sqrt(mean_depth) : c.tangential_stiffness;
+    const Real ct = c.stiffness > 0 ? c.damping * c.tangential_stiffness / c.stiffness : 0;
+    Vec3 stretch = remembered_stretch(model, springs, p) + slip * dt;
+    const Real limit = c.friction * fn;
+    if (kt * stretch.norm() > limit) stretch *= limit / (kt * stretch.norm());
+    Vec3 ft = -kt * stretch - ct * slip;  // on B
+    if (ft.norm() > limit) ft *= limit / ft.norm();
+    push(p, p.point, ft);
+    normal_magnitude[k] = fn;
+    tangential_magnitude[k] = ft.norm();
+    next.push_back({p.body_a, p.body_b, p.wall, p.point, stretch});
+  }
+  springs = std::move(next);
+}
+
+Real penalty_time_step_limit(const Model& model) {
+  const ContactDef& c = model.scene.contact;
+  Real limit = std::numeric_limits<Real>::infinity();
+  for (size_t b = 0; b < model.bodies.size(); ++b) {
+    if (model.bodies[b].fixed || !(c.stiffness > 0)) continue;
+    Real k = c.stiffness;
+    if (c.law == PenaltyLaw::hertz) k = 1.5 * c.stiffness * std::sqrt(0.01 * body_size(model, static_cast<int>(b)));
+    const Real period = 2 * std::numbers::pi * std::sqrt(model.bodies[b].inertia.mass / k);
+    limit = std::min(limit, period / 10);
+  }
+  return limit;
+}
+
+}  // namespace tem

@@ -1,0 +1,43 @@
+// The penalty model (classic DEM, the paper's ref. 1, Cundall & Strack): a contact is a spring
+// and a dashpot. Normal force from the depth and normal approach speed, linear (F = k d + c v)
+// or Hertzian (F = k d^(3/2) + c d^(1/4) v), never pulling, shared among the patch's points
+// (k/m and c/m each, with each corner's own depth: a single spring at the patch's centre would
+// let a face rock freely about it); a tangential spring per patch, at its centre, that
+// stretches with the slip and slides at the Coulomb limit mu (sum of the normal forces) (for the
+// Hertzian law its stiffness grows like d^(1/2), Mindlin's). No twisting spring. The spring's stretch is the
+// contact's memory: it is carried from step to step for the patch of the same two bodies that
+// lies within 1% of the body's size of where it was, and forgotten when the contact opens.
+//
+// Forces are explicit, from the state at the start of the step; the time step must resolve the
+// contact's oscillation, period 2 pi sqrt(m / k) for the lightest body. `penalty_time_step_limit`
+// gives a tenth of it, and `tem run` warns when the scene's time step is above.
+#pragma once
+
+#include <vector>
+
+#include "contact/contact_patch.hpp"
+#include "forces/contact_points.hpp"
+#include "world/model.hpp"
+
+namespace tem {
+
+// The memory of one contact.
+struct PenaltySpring {
+  int body_a = -1, body_b = -1, wall = -1;
+  Vec3 point = Vec3::Zero();
+  Vec3 stretch = Vec3::Zero();  // tangential spring extension, world
+};
+
+// Forces and torques on every body from the patches; `springs` is the last step's memory on
+// entry and this step's on return. Per patch, the magnitudes of the force on body A.
+void penalty_forces(const Model& model, const State& state,
+                    const std::vector<ContactPatch>& patches,
+                    const std::vector<ContactPoint>& points, std::vector<PenaltySpring>& springs,
+                    std::vector<Vec3>& force, std::vector<Vec3>& torque,
+                    std::vector<Real>& normal_magnitude, std::vector<Real>& tangential_magnitude);
+
+// A tenth of the contact oscillation period of the lightest moving body, for the linear law; for
+// the Hertzian law at a depth of 1% of that body's size. Infinity when nothing moves.
+Real penalty_time_step_limit(const Model& model);
+
+}  // namespace tem
