@@ -72,6 +72,8 @@ void compute_contact_forces(const Model& model, const State& state,
   f.force.assign(n_bodies, Vec3::Zero());
   f.torque.assign(n_bodies, Vec3::Zero());
   f.patch_forces.assign(patches.size(), PatchForce{});
+  f.patch_depth.resize(patches.size());
+  for (size_t k = 0; k < patches.size(); ++k) f.patch_depth[k] = patches[k].depth;
   std::swap(f.previous_points, f.points);
   std::swap(f.previous_impulses, f.impulses);
   std::swap(f.previous_friction, f.friction);

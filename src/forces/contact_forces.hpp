@@ -27,6 +27,7 @@ struct ContactForces {
   std::vector<Vec3> centres;
   std::vector<Real> approach;  // normal relative velocity at each point at the step's start
   std::vector<PatchFriction> friction;  // one per patch (default SEMM)
+  std::vector<Real> patch_depth;         // one per patch
   std::vector<PointImpulse> impulses;
   // The last step's points and impulses, for the warm start; how far a point may move and still
   // be the same contact, per body (1% of its size).

@@ -72,29 +72,31 @@ void penalty_forces(const Model& model, const State& state,
     const Vec3& n = p.normal;
     size_t last = i;
     while (last < points.size() && points[last].patch == k) ++last;
-    // Normal: each point's spring and dashpot, never pulling.
-    const Real share = 1.0 / static_cast<Real>(last - i);
-    Real fn = 0, mean_depth = 0;
-    for (; i < last; ++i) {
-      const ContactPoint& q = points[i];
-      const Real depth = std::max<Real>(q.depth, 0);
-      const Real approach = -n.dot(point_velocity(model, state, p.body_b, q.point) -
-                                   point_velocity(model, state, p.body_a, q.point));
-      const Real spring = hertz ? c.stiffness * depth * std::sqrt(depth) : c.stiffness * depth;
-      const Real dashpot =
-          hertz ? c.damping * std::pow(depth, 0.25) * approach : c.damping * approach;
-      const Real f = share * std::max<Real>(0, spring + dashpot);
-      push(p, q.point, f * n);
-      fn += f;
-      mean_depth += share * depth;
+    // Normal: the patch's spring and dashpot, never pulling, shared among its points in
+    // proportion to their depths (a tilted face pushes back hardest where it is deepest); with
+    // no depth at any point (all are edge crossings), at the patch's point.
+    const Real depth = std::max<Real>(p.depth, 0);
+    const Real approach = -n.dot(point_velocity(model, state, p.body_b, p.point) -
+                                 point_velocity(model, state, p.body_a, p.point));
+    const Real spring = hertz ? c.stiffness * depth * std::sqrt(depth) : c.stiffness * depth;
+    const Real dashpot =
+        hertz ? c.damping * std::pow(depth, 0.25) * approach : c.damping * approach;
+    const Real fn = std::max<Real>(0, spring + dashpot);
+    Real total_depth = 0;
+    for (size_t q = i; q < last; ++q) total_depth += std::max<Real>(points[q].depth, 0);
+    if (total_depth > 0) {
+      for (size_t q = i; q < last; ++q)
+        push(p, points[q].point, fn * std::max<Real>(points[q].depth, 0) / total_depth * n);
+    } else {
+      push(p, p.point, fn * n);
     }
+    i = last;
     // Tangential: the patch's spring stretches with the slip at its centre; at the Coulomb
     // limit it slides.
     const Vec3 u = point_velocity(model, state, p.body_b, p.point) -
                    point_velocity(model, state, p.body_a, p.point);
     const Vec3 slip = u - u.dot(n) * n;
-    const Real kt =
-        hertz ? c.tangential_stiffness * std::sqrt(mean_depth) : c.tangential_stiffness;
+    const Real kt = hertz ? c.tangential_stiffness * std::sqrt(depth) : c.tangential_stiffness;
     const Real ct = c.stiffness > 0 ? c.damping * c.tangential_stiffness / c.stiffness : 0;
     Vec3 stretch = remembered_stretch(model, springs, p) + slip * dt;
     const Real limit = c.friction * fn;

@@ -1,8 +1,8 @@
 // The penalty model (classic DEM, the paper's ref. 1, Cundall & Strack): a contact is a spring
-// and a dashpot. Normal force from the depth and normal approach speed, linear (F = k d + c v)
-// or Hertzian (F = k d^(3/2) + c d^(1/4) v), never pulling, shared among the patch's points
-// (k/m and c/m each, with each corner's own depth: a single spring at the patch's centre would
-// let a face rock freely about it); a tangential spring per patch, at its centre, that
+// and a dashpot. Normal force from the patch's depth and normal approach speed, linear
+// (F = k d + c v) or Hertzian (F = k d^(3/2) + c d^(1/4) v), never pulling, shared among the
+// patch's corner points in proportion to their depths (at a single point in its centre a face
+// would rock freely about it); a tangential spring per patch, at its centre, that
 // stretches with the slip and slides at the Coulomb limit mu (sum of the normal forces) (for the
 // Hertzian law its stiffness grows like d^(1/2), Mindlin's). No twisting spring. The spring's stretch is the
 // contact's memory: it is carried from step to step for the patch of the same two bodies that

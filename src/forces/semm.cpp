@@ -82,11 +82,25 @@ void solve_block(const BlockMatrix& k, const BlockVector& q, BlockVector& x) {
         const BlockVector zf = kf.ldlt().solve(-qf);
         for (int r = 0; r < f; ++r) z(index[r]) = zf(r);
       }
+      // Step towards z until a free impulse reaches zero; that one (exactly zero, not a
+      // rounding residue that would stall the next steps) leaves the free set.
       Real alpha = 1;
+      int blocking = -1;
       for (int i = 0; i < m; ++i)
-        if (free[i] && z(i) <= 0) alpha = std::min(alpha, x(i) / (x(i) - z(i)));
+        if (free[i] && z(i) <= 0) {
+          const Real a = x(i) / (x(i) - z(i));
+          if (a < alpha) {
+            alpha = a;
+            blocking = i;
+          }
+        }
+      if (blocking < 0) {
+        x = z;
+        break;
+      }
       x += alpha * (z - x);
-      if (alpha >= 1) break;
+      x(blocking) = 0;
+      free[blocking] = false;
       for (int i = 0; i < m; ++i)
         if (free[i] && x(i) <= 0) {
           x(i) = 0;
@@ -251,14 +265,20 @@ Vec3 relative_velocity(const std::vector<BodyResponse>& bodies, const std::vecto
   return velocity(c.body_b) - velocity(c.body_a);
 }
 
-SolverReport solve_semm(const std::vector<ContactPoint>& points, const std::vector<Real>& start,
-                        const std::vector<BodyResponse>& input, const std::vector<Vec3>& centres,
-                        const SolverSettings& settings, std::vector<PatchFriction>& patches,
-                        std::vector<PointImpulse>& impulses) {
+namespace {
+
+// The solve for given normal targets; `bodies` ends with the pseudo velocities after it.
+SolverReport solve_targets(const std::vector<ContactPoint>& points,
+                           const std::vector<Real>& targets,
+                           const std::vector<BodyResponse>& input,
+                           const std::vector<Vec3>& centres, const SolverSettings& settings,
+                           std::vector<PatchFriction>& patches,
+                           std::vector<PointImpulse>& impulses,
+                           std::vector<BodyResponse>& bodies) {
   const size_t n = points.size();
   impulses.resize(n);
+  bodies = input;  // pseudo velocities, updated in place
   if (n == 0) return SolverReport{};
-  std::vector<BodyResponse> bodies = input;  // pseudo velocities, updated in place
 
   std::vector<NormalRow> rows(n);
   for (size_t i = 0; i < n; ++i) {
@@ -269,16 +289,7 @@ SolverReport solve_semm(const std::vector<ContactPoint>& points, const std::vect
     row.normal = c.normal;
     row.k = c.normal.dot(row.b.response(c.normal, Vec3::Zero()).first +
                          row.a.response(c.normal, Vec3::Zero()).first);
-    // The normal relative velocity required after the step. An impact (approach faster than
-    // the threshold) leaves at e times its approach speed; resting contact must not approach;
-    // a point already separating may close again as fast as it was opening, no faster. Why the
-    // last: over a step the contact impulse does the work dt/2 lambda (u_start + u_after), so a
-    // push on a separating point (u_start > 0, u_after = 0) would add energy; with
-    // u_after >= -u_start it adds none, and impacts and resting contacts only take energy out.
-    const Real closing = -start[i];
-    row.target = closing > settings.restitution_threshold ? settings.restitution * closing
-                 : closing < 0                            ? closing
-                                                          : 0;
+    row.target = targets[i];
   }
   std::vector<FrictionRow> friction(patches.size());
   for (size_t k = 0; k < patches.size(); ++k) {
@@ -336,6 +347,43 @@ SolverReport solve_semm(const std::vector<ContactPoint>& points, const std::vect
     report.sweeps += first_sweeps;
   }
   return report;
+}
+
+}  // namespace
+
+SolverReport solve_semm(const std::vector<ContactPoint>& points, const std::vector<Real>& start,
+                        const std::vector<BodyResponse>& bodies, const std::vector<Vec3>& centres,
+                        const SolverSettings& settings, std::vector<PatchFriction>& patches,
+                        std::vector<PointImpulse>& impulses) {
+  // The normal relative velocity required after the step. An impact (approach faster than the
+  // threshold) leaves at e times its approach speed; resting contact must not approach; a point
+  // already separating may close again as fast as it was opening, no faster. Why the last: over
+  // a step the contact impulse does the work dt/2 lambda (u_start + u_after), so a push on a
+  // separating point (u_start > 0, u_after = 0) would add energy; with u_after >= -u_start it
+  // adds none, and impacts and resting contacts only take energy out.
+  std::vector<Real> targets(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Real closing = -start[i];
+    targets[i] = closing > settings.restitution_threshold ? settings.restitution * closing
+                 : closing < 0                            ? closing
+                                                          : 0;
+  }
+  std::vector<BodyResponse> after;
+  return solve_targets(points, targets, bodies, centres, settings, patches, impulses, after);
+}
+
+SolverReport solve_separation(const std::vector<ContactPoint>& points,
+                              const std::vector<Real>& targets,
+                              const std::vector<BodyResponse>& bodies,
+                              const std::vector<Vec3>& centres,
+                              std::vector<PatchFriction> patches,
+                              std::vector<BodyResponse>& velocities) {
+  SolverSettings settings;
+  settings.friction = 0;
+  std::vector<PointImpulse> impulses(points.size());
+  for (PatchFriction& p : patches) p.t1 = p.t2 = p.twist = 0;
+  return solve_targets(points, targets, bodies, centres, settings, patches, impulses,
+                       velocities);
 }
 
 SolverReport solve_semm_paper(const std::vector<ContactPoint>& points,

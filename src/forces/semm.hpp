@@ -80,6 +80,16 @@ SolverReport solve_semm(const std::vector<ContactPoint>& points, const std::vect
                         const SolverSettings& settings, std::vector<PatchFriction>& patches,
                         std::vector<PointImpulse>& impulses);
 
+// The pseudo velocities (`velocities`: the bodies' with their own set to zero on entry, their
+// result on return) that separate the points at the given normal speeds, impulses >= 0, no
+// friction: what the overlap correction moves the bodies by.
+SolverReport solve_separation(const std::vector<ContactPoint>& points,
+                              const std::vector<Real>& targets,
+                              const std::vector<BodyResponse>& bodies,
+                              const std::vector<Vec3>& centres,
+                              std::vector<PatchFriction> patches,
+                              std::vector<BodyResponse>& velocities);
+
 // The paper's unconstrained normal-only SEMM: K S = D, solved directly.
 SolverReport solve_semm_paper(const std::vector<ContactPoint>& points,
                               const std::vector<BodyResponse>& bodies,

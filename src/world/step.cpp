@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "dynamics/integrator.hpp"
+#include "forces/overlap_correction.hpp"
 
 namespace tem {
 namespace {
@@ -46,11 +47,17 @@ void advance(const Model& model, State& state, Workspace& w) {
   Clock::time_point clock = Clock::now();
 
   // 5. Integration of every moving body under gravity and its contact force and torque.
+  const bool correct = scene.contact.model == ContactModel::semm &&
+                       scene.integrator == IntegratorKind::default_ && !w.patches.empty();
+  const Real energy_before = correct ? system_energies(model, state).total() : 0;
   for (size_t i = 0; i < model.bodies.size(); ++i) {
     if (model.bodies[i].fixed) continue;
     integrate(scene.integrator, model.bodies[i].inertia, scene.gravity, w.forces.force[i],
               w.forces.torque[i], scene.time_step, state.bodies[i]);
   }
+  // 6. Correction of existing overlap, within the energy the contacts dissipated (default).
+  if (correct && correct_overlap(model, w.forces, energy_before, state).applied)
+    ++w.times.corrected_steps;
   ++state.step;
   state.time = static_cast<Real>(state.step) * scene.time_step;  // no drift from summing dt
   w.times.integrate += seconds_since(clock);

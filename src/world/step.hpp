@@ -22,6 +22,7 @@ struct StageTimes {
   int max_sweeps = 0;
   long long sweeps = 0;
   long long unconverged_steps = 0;
+  long long corrected_steps = 0;  // steps whose overlap correction moved bodies
 };
 
 struct Workspace {

@@ -1,0 +1,65 @@
+#include "forces/overlap_correction.hpp"
+
+#include <algorithm>
+
+#include "world/step.hpp"
+
+namespace tem {
+namespace {
+
+constexpr Real kFraction = 1.0;  // of the overlap beyond the slop, per step
+constexpr Real kSlop = 1e-4;     // of the body's size: overlap left alone
+
+// The rotation cay(R(a)) = (I - R(a)/2)^-1 (I + R(a)/2), a rotation for every a.
+Mat3 cayley(const Vec3& a) {
+  const Mat3 w = cross_matrix(a);
+  return Mat3::Identity() + (4 / (4 + a.squaredNorm())) * (w + 0.5 * w * w);
+}
+
+}  // namespace
+
+CorrectionReport correct_overlap(const Model& model, const ContactForces& f, Real energy_before,
+                                 State& state) {
+  CorrectionReport report;
+  if (f.points.empty() || f.match_radius.size() != model.bodies.size()) return report;
+  const Real dt = model.scene.time_step;
+  // match_radius is 1% of each body's size.
+  std::vector<Real> targets(f.points.size(), 0);
+  bool any = false;
+  for (size_t i = 0; i < f.points.size(); ++i) {
+    const ContactPoint& c = f.points[i];
+    Real size = 100 * f.match_radius[c.body_a];
+    if (c.body_b >= 0) size = std::min(size, 100 * f.match_radius[c.body_b]);
+    // The patch's depth at every point: a corner's own depth is not known (an extreme corner is
+    // often an edge's crossing with the other surface, at depth 0, beside the deep node).
+    const Real excess = f.patch_depth[c.patch] - kSlop * size;
+    if (excess > 0) {
+      targets[i] = kFraction * excess / dt;
+      any = true;
+    }
+  }
+  if (!any) return report;
+
+  std::vector<BodyResponse> still = f.responses;
+  for (BodyResponse& r : still) r.velocity = r.angular_velocity = Vec3::Zero();
+  std::vector<BodyResponse> moved;
+  solve_separation(f.points, targets, still, f.centres, f.friction, moved);
+
+  // The potential energy the move costs, against what the step dissipated.
+  Real lift = 0;
+  for (size_t b = 0; b < model.bodies.size(); ++b)
+    lift -= model.bodies[b].inertia.mass * model.scene.gravity.dot(dt * moved[b].velocity);
+  const Real dissipated = energy_before - system_energies(model, state).total();
+  report.scale = lift > 0 ? std::clamp<Real>(dissipated / lift, 0, 1) : 1;
+  if (report.scale == 0) return report;
+  for (size_t b = 0; b < model.bodies.size(); ++b) {
+    if (model.bodies[b].fixed) continue;
+    BodyState& s = state.bodies[b];
+    s.x += report.scale * dt * moved[b].velocity;
+    s.g = cayley(report.scale * dt * moved[b].angular_velocity) * s.g;
+  }
+  report.applied = true;
+  return report;
+}
+
+}  // namespace tem

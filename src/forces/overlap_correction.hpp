@@ -1,0 +1,28 @@
+// Correction of existing overlap that adds no energy (default mode; method.md §6).
+//
+// The velocity-level contact of SEMM stops bodies approaching but leaves the overlap that one
+// step of approach made (impact speed x dt). This pushes overlapping points apart by moving the
+// bodies (positions and attitudes, not velocities: no bounce) by the overlap beyond a slop of
+// 1e-4 of the body's size, solved like the contact impulses but on pseudo velocities (a "split
+// impulse"), in one step: a body that has just landed dissipates then, and not afterwards. Lifting a body raises its potential energy, so the move is
+// scaled down to what the step's contacts dissipated: the total energy never rises. A body
+// resting still (nothing dissipated) keeps its overlap; an impact, which dissipates far more
+// than the lift costs, is corrected in the step it happens.
+#pragma once
+
+#include "forces/contact_forces.hpp"
+#include "world/model.hpp"
+
+namespace tem {
+
+struct CorrectionReport {
+  bool applied = false;
+  Real scale = 0;  // the fraction of the wanted move that the energy allowed
+};
+
+// After integration: `energy_before` is the system's energy at the start of the step, `forces`
+// the step's contact forces (points, responses, centres, patches).
+CorrectionReport correct_overlap(const Model& model, const ContactForces& forces,
+                                 Real energy_before, State& state);
+
+}  // namespace tem
