@@ -17,19 +17,12 @@ constexpr Real kG = earth_gravity_cgs;
 
 // A 0.2 x 0.2 x 0.1 box (density 1, mass 0.004 g) on the floor plane, penalty contact.
 SceneDef penalty_box(PenaltyLaw law, Real stiffness, Real friction) {
-  SceneDef scene;
+  SceneDef scene = testing_support::box_on_floor();
   scene.contact.model = ContactModel::penalty;
   scene.contact.law = law;
   scene.contact.stiffness = stiffness;
   scene.contact.tangential_stiffness = 2.0 / 7.0 * stiffness;
   scene.contact.friction = friction;
-  scene.walls.push_back({Vec3::Zero(), Vec3::UnitZ()});
-  BodyDef box;
-  box.name = "box";
-  box.shape.type = ShapeType::box;
-  box.shape.size = Vec3(0.2, 0.2, 0.1);
-  box.position = Vec3(0, 0, 0.05);
-  scene.bodies.push_back(box);
   return scene;
 }
 

@@ -18,17 +18,10 @@ constexpr Real kG = earth_gravity_cgs;
 
 // A 0.2 x 0.2 x 0.1 box (density 1) on the floor plane z = 0, bottom face at z = lift.
 SceneDef box_on_floor(Real lift, Real friction, Real restitution, Real dt) {
-  SceneDef scene;
+  SceneDef scene = testing_support::box_on_floor(lift);
   scene.time_step = dt;
   scene.contact.friction = friction;
   scene.contact.restitution = restitution;
-  scene.walls.push_back({Vec3::Zero(), Vec3::UnitZ()});
-  BodyDef box;
-  box.name = "box";
-  box.shape.type = ShapeType::box;
-  box.shape.size = Vec3(0.2, 0.2, 0.1);
-  box.position = Vec3(0, 0, 0.05 + lift);
-  scene.bodies.push_back(box);
   return scene;
 }
 

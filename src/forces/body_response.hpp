@@ -31,6 +31,15 @@ struct BodyResponse {
 void body_responses(const Model& model, const State& state, Real dt,
                     std::vector<BodyResponse>& out);
 
+// Velocity of body `body`'s material point at p in `state` (a wall, body -1, and fixed bodies
+// stand still).
+inline Vec3 material_point_velocity(const Model& model, const State& state, int body,
+                                    const Vec3& p) {
+  if (body < 0 || model.bodies[body].fixed) return Vec3::Zero();
+  const BodyState& s = state.bodies[body];
+  return s.v + s.angular_velocity_world().cross(p - s.x);
+}
+
 // d Omega' / d N of the paper's update (eqs. 13, 17, 18) for a torque N held through the step:
 // A^-1 [3/2 dt I - dt^2 R(Omega) + 1/2 dt^2 R(A Omega) A^-1] g^T, with 1 for 3/2 on a body's
 // first step (no previous torque, no torque rate).

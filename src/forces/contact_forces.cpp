@@ -7,14 +7,6 @@
 namespace tem {
 namespace {
 
-// Velocity of a body's material point at p, at the start of the step (walls and fixed bodies
-// stand still).
-Vec3 start_velocity(const Model& model, const State& state, int body, const Vec3& p) {
-  if (body < 0 || model.bodies[body].fixed) return Vec3::Zero();
-  const BodyState& s = state.bodies[body];
-  return s.v + s.angular_velocity_world().cross(p - s.x);
-}
-
 Vec3 start_spin(const Model& model, const State& state, int body) {
   if (body < 0 || model.bodies[body].fixed) return Vec3::Zero();
   return state.bodies[body].angular_velocity_world();
@@ -28,8 +20,8 @@ void start_velocities(const Model& model, const State& state,
   f.approach.resize(f.points.size());
   for (size_t i = 0; i < f.points.size(); ++i) {
     const ContactPoint& c = f.points[i];
-    f.approach[i] = c.normal.dot(start_velocity(model, state, c.body_b, c.point) -
-                                 start_velocity(model, state, c.body_a, c.point));
+    f.approach[i] = c.normal.dot(material_point_velocity(model, state, c.body_b, c.point) -
+                                 material_point_velocity(model, state, c.body_a, c.point));
   }
   f.friction.assign(patches.size(), PatchFriction{});
   for (size_t i = 0; i < f.points.size();) {
@@ -45,8 +37,8 @@ void start_velocities(const Model& model, const State& state,
     p.normal = c.normal;
     p.tangent1 = c.tangent1;
     p.tangent2 = c.tangent2;
-    const Vec3 dv = start_velocity(model, state, c.body_b, p.centre) -
-                    start_velocity(model, state, c.body_a, p.centre);
+    const Vec3 dv = material_point_velocity(model, state, c.body_b, p.centre) -
+                    material_point_velocity(model, state, c.body_a, p.centre);
     const Vec3 dw = start_spin(model, state, c.body_b) - start_spin(model, state, c.body_a);
     p.start_slip = Vec3(p.tangent1.dot(dv), p.tangent2.dot(dv), p.normal.dot(dw));
   }

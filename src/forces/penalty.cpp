@@ -1,5 +1,7 @@
 #include "forces/penalty.hpp"
 
+#include "forces/body_response.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -7,12 +9,6 @@
 
 namespace tem {
 namespace {
-
-Vec3 point_velocity(const Model& model, const State& state, int body, const Vec3& p) {
-  if (body < 0 || model.bodies[body].fixed) return Vec3::Zero();
-  const BodyState& s = state.bodies[body];
-  return s.v + s.angular_velocity_world().cross(p - s.x);
-}
 
 Real body_size(const Model& model, int body) {
   Real size = 0;
@@ -76,8 +72,8 @@ void penalty_forces(const Model& model, const State& state,
     // proportion to their depths (a tilted face pushes back hardest where it is deepest); with
     // no depth at any point (all are edge crossings), at the patch's point.
     const Real depth = std::max<Real>(p.depth, 0);
-    const Real approach = -n.dot(point_velocity(model, state, p.body_b, p.point) -
-                                 point_velocity(model, state, p.body_a, p.point));
+    const Real approach = -n.dot(material_point_velocity(model, state, p.body_b, p.point) -
+                                 material_point_velocity(model, state, p.body_a, p.point));
     const Real spring = hertz ? c.stiffness * depth * std::sqrt(depth) : c.stiffness * depth;
     const Real dashpot =
         hertz ? c.damping * std::pow(depth, 0.25) * approach : c.damping * approach;
@@ -93,8 +89,8 @@ void penalty_forces(const Model& model, const State& state,
     i = last;
     // Tangential: the patch's spring stretches with the slip at its centre; at the Coulomb
     // limit it slides.
-    const Vec3 u = point_velocity(model, state, p.body_b, p.point) -
-                   point_velocity(model, state, p.body_a, p.point);
+    const Vec3 u = material_point_velocity(model, state, p.body_b, p.point) -
+                   material_point_velocity(model, state, p.body_a, p.point);
     const Vec3 slip = u - u.dot(n) * n;
     const Real kt = hertz ? c.tangential_stiffness * std::sqrt(depth) : c.tangential_stiffness;
     const Real ct = c.stiffness > 0 ? c.damping * c.tangential_stiffness / c.stiffness : 0;

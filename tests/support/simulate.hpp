@@ -60,6 +60,20 @@ inline Model load_scene(const std::string& relative) {
   return build_model(read.scene);
 }
 
+// A 0.2 x 0.2 x 0.1 box (density 1) standing on the floor plane z = 0, its bottom face at
+// z = lift, under the default settings.
+inline SceneDef box_on_floor(Real lift = 0) {
+  SceneDef scene;
+  scene.walls.push_back({Vec3::Zero(), Vec3::UnitZ()});
+  BodyDef box;
+  box.name = "box";
+  box.shape.type = ShapeType::box;
+  box.shape.size = Vec3(0.2, 0.2, 0.1);
+  box.position = Vec3(0, 0, 0.05 + lift);
+  scene.bodies.push_back(box);
+  return scene;
+}
+
 // Angle (degrees) between a body's axis (a body-frame unit vector) and the world's z.
 inline Real tilt_degrees(const BodyState& s, const Vec3& body_axis) {
   // atan2 of the cross and dot products: exact for small angles, where acos(1 - e) is not.
