@@ -59,7 +59,12 @@ void advance(const Model& model, State& state, Workspace& w) {
   if (correct && correct_overlap(model, w.forces, energy_before, state).applied)
     ++w.times.corrected_steps;
   ++state.step;
-  state.time = static_cast<Real>(state.step) * scene.time_step;  // no drift from summing dt
+  // No drift from summing dt; and where dt divides a second (1e-5, 1/240), step / steps per
+  // second, the double nearest the decimal time (15000 * 1e-5 is 0.15000000000000002).
+  const Real per_second = std::round(1 / scene.time_step);
+  state.time = std::abs(per_second * scene.time_step - 1) < 1e-12
+                   ? static_cast<Real>(state.step) / per_second
+                   : static_cast<Real>(state.step) * scene.time_step;
   w.times.integrate += seconds_since(clock);
 
   ++w.times.steps;
