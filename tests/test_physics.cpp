@@ -34,8 +34,7 @@ Real rotation_angle(const Mat3& g) {
 
 // A box set down on the floor stays: it sinks by what one step of free fall takes before its
 // contact is found (half g dt^2 in that step, as much in the next while the contact stops it:
-// g dt^2 in all, to round-off), and neither drifts nor turns, for 2 s (round-off only: 2e4 steps
-// of 1e-16).
+// g dt^2 in all, to round-off), and neither drifts nor turns, for 2 s.
 TEST(Physics, BoxRestsOnTheFloor) {
   const Real dt = 1e-4;
   const Model model = build_model(box_on_floor(0, 0.3, 0, dt));
@@ -52,8 +51,8 @@ TEST(Physics, BoxRestsOnTheFloor) {
   report("box at rest: rotation (rad)", turn);
   report("box at rest: largest energy rise / (M g 1cm)", watch.largest_energy_rise / energy_scale(model));
   EXPECT_LE(sink, kG * dt * dt * (1 + 1e-9));
-  EXPECT_LE(drift, 1e-11);
-  EXPECT_LE(turn, 1e-11);
+  EXPECT_LE(drift, 1e-12);
+  EXPECT_LE(turn, 1e-12);
   EXPECT_LE(watch.largest_energy_rise, 1e-12 * energy_scale(model));
 }
 
