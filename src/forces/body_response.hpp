@@ -40,6 +40,22 @@ inline Vec3 material_point_velocity(const Model& model, const State& state, int 
   return s.v + s.angular_velocity_world().cross(p - s.x);
 }
 
+// Adds a contact force `on_b` acting at `at` (and a pure moment) to body B, and their opposites
+// to body A, as forces and torques about the centres of mass `centres`; fixed bodies and walls
+// (body -1) take nothing.
+inline void add_contact_force(const Model& model, const std::vector<Vec3>& centres, int body_a,
+                              int body_b, const Vec3& at, const Vec3& on_b, const Vec3& moment,
+                              std::vector<Vec3>& force, std::vector<Vec3>& torque) {
+  if (!model.bodies[body_a].fixed) {
+    force[body_a] -= on_b;
+    torque[body_a] -= (at - centres[body_a]).cross(on_b) + moment;
+  }
+  if (body_b >= 0 && !model.bodies[body_b].fixed) {
+    force[body_b] += on_b;
+    torque[body_b] += (at - centres[body_b]).cross(on_b) + moment;
+  }
+}
+
 // d Omega' / d N of the paper's update (eqs. 13, 17, 18) for a torque N held through the step:
 // A^-1 [3/2 dt I - dt^2 R(Omega) + 1/2 dt^2 R(A Omega) A^-1] g^T, with 1 for 3/2 on a body's
 // first step (no previous torque, no torque rate).

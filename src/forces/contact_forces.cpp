@@ -72,12 +72,14 @@ void compute_contact_forces(const Model& model, const State& state,
   f.points.clear();
   f.impulses.clear();
   f.solver = SolverReport{};
+  f.centres.resize(n_bodies);
+  for (size_t b = 0; b < n_bodies; ++b) f.centres[b] = state.bodies[b].x;
   if (scene.contact.model == ContactModel::penalty) {
     f.solver.sweeps = 0;
     for (size_t i = 0; i < patches.size(); ++i)
       patch_points(patches[i], static_cast<int>(i), scene.contact.points == PatchPoints::one,
                    f.points);
-    penalty_forces(model, state, patches, f.points, f.springs, f.force, f.torque,
+    penalty_forces(model, state, patches, f.points, f.centres, f.springs, f.force, f.torque,
                    f.normal_magnitude, f.tangential_magnitude);
     for (size_t k = 0; k < patches.size(); ++k)
       f.patch_forces[k] = {f.normal_magnitude[k], f.tangential_magnitude[k]};
@@ -90,8 +92,6 @@ void compute_contact_forces(const Model& model, const State& state,
   for (size_t i = 0; i < patches.size(); ++i)
     patch_points(patches[i], static_cast<int>(i), one_point, f.points);
   body_responses(model, state, dt, f.responses);
-  f.centres.resize(n_bodies);
-  for (size_t b = 0; b < n_bodies; ++b) f.centres[b] = state.bodies[b].x;
 
   if (paper) {
     f.solver = solve_semm_paper(f.points, f.responses, f.centres, f.impulses);
@@ -111,14 +111,7 @@ void compute_contact_forces(const Model& model, const State& state,
 
   // Impulses to forces held through the step: on B +j, on A -j, with their moments.
   auto push = [&](int body_a, int body_b, const Vec3& at, const Vec3& on_b, const Vec3& moment) {
-    if (!model.bodies[body_a].fixed) {
-      f.force[body_a] -= on_b;
-      f.torque[body_a] -= (at - f.centres[body_a]).cross(on_b) + moment;
-    }
-    if (body_b >= 0 && !model.bodies[body_b].fixed) {
-      f.force[body_b] += on_b;
-      f.torque[body_b] += (at - f.centres[body_b]).cross(on_b) + moment;
-    }
+    add_contact_force(model, f.centres, body_a, body_b, at, on_b, moment, f.force, f.torque);
   };
   for (size_t i = 0; i < f.points.size(); ++i) {
     const ContactPoint& c = f.points[i];

@@ -42,7 +42,8 @@ Vec3 remembered_stretch(const Model& model, const std::vector<PenaltySpring>& ol
 
 void penalty_forces(const Model& model, const State& state,
                     const std::vector<ContactPatch>& patches,
-                    const std::vector<ContactPoint>& points, std::vector<PenaltySpring>& springs,
+                    const std::vector<ContactPoint>& points, const std::vector<Vec3>& centres,
+                    std::vector<PenaltySpring>& springs,
                     std::vector<Vec3>& force, std::vector<Vec3>& torque,
                     std::vector<Real>& normal_magnitude, std::vector<Real>& tangential_magnitude) {
   const ContactDef& c = model.scene.contact;
@@ -53,14 +54,7 @@ void penalty_forces(const Model& model, const State& state,
   normal_magnitude.assign(patches.size(), 0);
   tangential_magnitude.assign(patches.size(), 0);
   auto push = [&](const ContactPatch& p, const Vec3& at, const Vec3& on_b) {
-    if (!model.bodies[p.body_a].fixed) {
-      force[p.body_a] -= on_b;
-      torque[p.body_a] -= (at - state.bodies[p.body_a].x).cross(on_b);
-    }
-    if (p.body_b >= 0 && !model.bodies[p.body_b].fixed) {
-      force[p.body_b] += on_b;
-      torque[p.body_b] += (at - state.bodies[p.body_b].x).cross(on_b);
-    }
+    add_contact_force(model, centres, p.body_a, p.body_b, at, on_b, Vec3::Zero(), force, torque);
   };
   for (size_t i = 0; i < points.size();) {
     const int k = points[i].patch;

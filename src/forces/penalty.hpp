@@ -28,11 +28,12 @@ struct PenaltySpring {
   Vec3 stretch = Vec3::Zero();  // tangential spring extension, world
 };
 
-// Forces and torques on every body from the patches; `springs` is the last step's memory on
+// Forces and torques (about `centres`, the centres of mass) on every body from the patches; `springs` is the last step's memory on
 // entry and this step's on return. Per patch, the magnitudes of the force on body A.
 void penalty_forces(const Model& model, const State& state,
                     const std::vector<ContactPatch>& patches,
-                    const std::vector<ContactPoint>& points, std::vector<PenaltySpring>& springs,
+                    const std::vector<ContactPoint>& points, const std::vector<Vec3>& centres,
+                    std::vector<PenaltySpring>& springs,
                     std::vector<Vec3>& force, std::vector<Vec3>& torque,
                     std::vector<Real>& normal_magnitude, std::vector<Real>& tangential_magnitude);
 
