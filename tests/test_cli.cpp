@@ -343,8 +343,19 @@ TEST(Cli, RunWritesTheResultFiles) {
   EXPECT_TRUE(again.ok());
 
   const std::string dir2 = dir + "_again";
-  ASSERT_EQ(run_tem("run '" + scene + "' --out '" + dir2 + "'").status, 0);
+  const TemRun second = run_tem("run '" + scene + "' --out '" + dir2 + "' --hash");
+  ASSERT_EQ(second.status, 0);
   EXPECT_EQ(slurp(dir2 + "/bodies.csv"), slurp(dir + "/bodies.csv"));
+  // --hash: the last line, 16 hex digits, the same on a third run.
+  const auto hash_line = [&](const TemRun& r) {
+    const auto all = lines(r.out);
+    return all.empty() ? std::string() : all.back();
+  };
+  EXPECT_EQ(hash_line(second).substr(0, 6), "hash: ");
+  EXPECT_EQ(hash_line(second).size(), 6u + 16u);
+  EXPECT_EQ(hash_line(run_tem("run '" + scene + "' --out '" + dir2 + "' --hash")),
+            hash_line(second));
+  std::filesystem::remove_all(dir2);
   std::filesystem::remove_all(dir);
   std::filesystem::remove_all(dir2);
 }

@@ -35,8 +35,10 @@ int check_command(const std::string& scene_file);
 // (to stdout, or to FILE).
 int contacts_command(const std::string& scene_file, const std::string& out_file);
 
-// `tem run SCENE --out DIR [--contacts]`: simulates and writes bodies.csv, energy.csv,
-// scene.json (and contacts.csv) into DIR.
-int run_command(const std::string& scene_file, const std::string& out_dir, bool contacts);
+// `tem run SCENE --out DIR [--contacts] [--hash]`: simulates and writes bodies.csv,
+// energy.csv, scene.json (and contacts.csv) into DIR; with --hash, prints as its last line
+// `hash: <hex>` of the final state's exact bits.
+int run_command(const std::string& scene_file, const std::string& out_dir, bool contacts,
+                bool hash);
 
 }  // namespace tem::cli

@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "forces/penalty.hpp"
 #include "io/run_output.hpp"
+#include "world/state_hash.hpp"
 #include "world/step.hpp"
 
 namespace tem::cli {
@@ -33,7 +34,8 @@ void print_summary(const Model& model, const State& state, const Workspace& w, d
 
 }  // namespace
 
-int run_command(const std::string& scene_file, const std::string& out_dir, bool contacts) {
+int run_command(const std::string& scene_file, const std::string& out_dir, bool contacts,
+                bool hash) {
   const std::optional<Model> loaded = load_model(scene_file);
   if (!loaded) return kExitBadInput;
   const Model& model = *loaded;
@@ -74,6 +76,7 @@ int run_command(const std::string& scene_file, const std::string& out_dir, bool 
     print_summary(model, state, workspace, wall);
     std::cerr << "tem run: results in " << out_dir << "/ (bodies.csv, energy.csv"
               << (contacts ? ", contacts.csv" : "") << ", scene.json)\n";
+    if (hash) std::cout << "hash: " << hash_hex(state_hash(state)) << std::endl;
   } catch (const std::exception& e) {
     std::cerr << "tem run: " << e.what() << "\n";
     return kExitFailed;

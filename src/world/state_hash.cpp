@@ -1,0 +1,47 @@
+#include "world/state_hash.hpp"
+
+#include <cstdio>
+#include <cstring>
+
+namespace tem {
+namespace {
+
+constexpr std::uint64_t kOffset = 14695981039346656037ull;
+constexpr std::uint64_t kPrime = 1099511628211ull;
+
+void mix(std::uint64_t& h, const void* data, std::size_t size) {
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < size; ++i) {
+    h ^= bytes[i];
+    h *= kPrime;
+  }
+}
+
+void mix(std::uint64_t& h, Real value) {
+  value += 0.0;  // -0 and +0 are the same state
+  mix(h, &value, sizeof value);
+}
+
+}  // namespace
+
+std::uint64_t state_hash(const State& state) {
+  std::uint64_t h = kOffset;
+  const long long step = state.step;
+  mix(h, &step, sizeof step);
+  for (const BodyState& b : state.bodies) {
+    for (int k = 0; k < 3; ++k) mix(h, b.x[k]);
+    for (int k = 0; k < 3; ++k) mix(h, b.v[k]);
+    for (int k = 0; k < 9; ++k) mix(h, b.g(k));
+    for (int k = 0; k < 3; ++k) mix(h, b.omega[k]);
+    for (int k = 0; k < 3; ++k) mix(h, b.prev_torque[k]);
+  }
+  return h;
+}
+
+std::string hash_hex(std::uint64_t hash) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+  return text;
+}
+
+}  // namespace tem
