@@ -21,4 +21,12 @@ inline Mat3 cross_matrix(const Vec3& a) {
   return r;
 }
 
+// The Cayley transform cay(R(a)) = (I - R(a)/2)^-1 (I + R(a)/2)
+// = I + 4/(4 + |a|^2) (R(a) + R(a)^2/2), from R(a)^3 = -|a|^2 R(a): a rotation to round-off for
+// every a, close to the rotation by |a| about a for small a.
+inline Mat3 cayley(const Vec3& a) {
+  const Mat3 w = cross_matrix(a);
+  return Mat3::Identity() + (4 / (4 + a.squaredNorm())) * (w + 0.5 * w * w);
+}
+
 }  // namespace tem

@@ -18,8 +18,8 @@ void integrate_paper(const RigidInertia& body, const Vec3& gravity, const Vec3& 
                      const Vec3& torque, Real dt, BodyState& state);
 
 // The default: a kick (v and the world angular momentum take the step's impulses) followed by a
-// drift (x exact under the constant acceleration G + F/M; free rotation by the energy-momentum conserving
-// implicit-midpoint/Cayley scheme). g stays orthonormal to round-off.
+// drift (x exact under the constant acceleration G + F/M; free rotation by the energy-momentum
+// conserving implicit-midpoint/Cayley scheme). g stays orthonormal to round-off.
 void integrate_default(const RigidInertia& body, const Vec3& gravity, const Vec3& force,
                        const Vec3& torque, Real dt, BodyState& state);
 

@@ -11,8 +11,8 @@
 // makes a constant torque give L exactly L0 + N t.
 //
 // Drift. x' = x + dt v+ - 1/2 dt^2 (G + F/M) is exact under a constant acceleration (the kick
-// added the whole (G + F/M) dt to v; the correction puts the parabola back). The rotation is torque-free over the step,
-// advanced by the implicit midpoint rule on the body-frame momentum L_b = g^T L+:
+// added the whole (G + F/M) dt to v; the correction puts the parabola back). The rotation is
+// torque-free over the step, advanced by the implicit midpoint rule on the body-frame momentum L_b = g^T L+:
 //   L_b' = L_b - dt Omega_m x (L_b + L_b')/2,   Omega_m = A^-1 (L_b + L_b')/2,
 // which is L_b' = cay(-dt R(Omega_m)) L_b with the Cayley transform
 // cay(W) = (I - W/2)^-1 (I + W/2), a rotation for every skew W. The attitude follows the
@@ -44,13 +44,6 @@ namespace {
 
 constexpr int kMaxMidpointIterations = 100;
 constexpr Real kMidpointTolerance = 1e-15;  // relative change of Omega_m
-
-// cay(R(a)) = (I - R(a)/2)^-1 (I + R(a)/2) = I + 4/(4 + |a|^2) (R(a) + R(a)^2/2), from
-// R(a)^3 = -|a|^2 R(a). The closed form is a rotation to round-off for every a.
-Mat3 cayley(const Vec3& a) {
-  const Mat3 w = cross_matrix(a);
-  return Mat3::Identity() + (4 / (4 + a.squaredNorm())) * (w + 0.5 * w * w);
-}
 
 // cay(R(a)) b without forming the matrix: b plus a small increment, which keeps |b| to round-off
 // better than multiplying by a matrix whose diagonal is 1 - O(|a|^2).

@@ -47,11 +47,9 @@ void start_velocities(const Model& model, const State& state,
 // 1% of each body's size: the distance below which a contact point is the same from one step
 // to the next.
 void match_radii(const Model& model, std::vector<Real>& radius) {
-  radius.assign(model.bodies.size(), 0);
+  radius.resize(model.bodies.size());
   for (size_t b = 0; b < model.bodies.size(); ++b)
-    for (const BlockInstance& i : model.bodies[b].blocks)
-      radius[b] = std::max(radius[b],
-                           0.01 * (i.offset.norm() + model.blocks[i.block].bounding_radius()));
+    radius[b] = 0.01 * body_size(model, static_cast<int>(b));
 }
 
 }  // namespace

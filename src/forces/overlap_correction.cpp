@@ -7,34 +7,26 @@
 namespace tem {
 namespace {
 
-constexpr Real kFraction = 1.0;  // of the overlap beyond the slop, per step
-constexpr Real kSlop = 1e-4;     // of the body's size: overlap left alone
-
-// The rotation cay(R(a)) = (I - R(a)/2)^-1 (I + R(a)/2), a rotation for every a.
-Mat3 cayley(const Vec3& a) {
-  const Mat3 w = cross_matrix(a);
-  return Mat3::Identity() + (4 / (4 + a.squaredNorm())) * (w + 0.5 * w * w);
-}
+constexpr Real kSlop = 1e-4;  // of the body's size: overlap left alone
 
 }  // namespace
 
 CorrectionReport correct_overlap(const Model& model, const ContactForces& f, Real energy_before,
                                  State& state) {
   CorrectionReport report;
-  if (f.points.empty() || f.match_radius.size() != model.bodies.size()) return report;
+  if (f.points.empty()) return report;
   const Real dt = model.scene.time_step;
-  // match_radius is 1% of each body's size.
   std::vector<Real> targets(f.points.size(), 0);
   bool any = false;
   for (size_t i = 0; i < f.points.size(); ++i) {
     const ContactPoint& c = f.points[i];
-    Real size = 100 * f.match_radius[c.body_a];
-    if (c.body_b >= 0) size = std::min(size, 100 * f.match_radius[c.body_b]);
+    Real size = body_size(model, c.body_a);
+    if (c.body_b >= 0) size = std::min(size, body_size(model, c.body_b));
     // The patch's depth at every point: a corner's own depth is not known (an extreme corner is
     // often an edge's crossing with the other surface, at depth 0, beside the deep node).
     const Real excess = f.patch_depth[c.patch] - kSlop * size;
     if (excess > 0) {
-      targets[i] = kFraction * excess / dt;
+      targets[i] = excess / dt;  // all of it in this step
       any = true;
     }
   }

@@ -10,13 +10,6 @@
 namespace tem {
 namespace {
 
-Real body_size(const Model& model, int body) {
-  Real size = 0;
-  for (const BlockInstance& i : model.bodies[body].blocks)
-    size = std::max(size, i.offset.norm() + model.blocks[i.block].bounding_radius());
-  return size;
-}
-
 // The spring of the last step for this patch: same pair, nearest within 1% of A's size.
 Vec3 remembered_stretch(const Model& model, const std::vector<PenaltySpring>& old,
                         const ContactPatch& p) {
@@ -107,7 +100,8 @@ Real penalty_time_step_limit(const Model& model) {
   for (size_t b = 0; b < model.bodies.size(); ++b) {
     if (model.bodies[b].fixed || !(c.stiffness > 0)) continue;
     Real k = c.stiffness;
-    if (c.law == PenaltyLaw::hertz) k = 1.5 * c.stiffness * std::sqrt(0.01 * body_size(model, static_cast<int>(b)));
+    if (c.law == PenaltyLaw::hertz)
+      k = 1.5 * c.stiffness * std::sqrt(0.01 * body_size(model, static_cast<int>(b)));
     const Real period = 2 * std::numbers::pi * std::sqrt(model.bodies[b].inertia.mass / k);
     limit = std::min(limit, period / 10);
   }

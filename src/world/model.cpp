@@ -80,6 +80,13 @@ Model build_model(const SceneDef& scene) {
   return model;
 }
 
+Real body_size(const Model& model, int body) {
+  Real size = 0;
+  for (const BlockInstance& i : model.bodies[body].blocks)
+    size = std::max(size, i.offset.norm() + model.blocks[i.block].bounding_radius());
+  return size;
+}
+
 State initial_state(const Model& model) {
   State state;
   for (size_t i = 0; i < model.bodies.size(); ++i) {

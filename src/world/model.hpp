@@ -50,6 +50,10 @@ struct Model {
 // shape or body at fault.
 Model build_model(const SceneDef& scene);
 
+// A body's size: the largest distance from its centre of mass that any of its nodes can have
+// (block offset + block bounding radius). Contact tolerances are fractions of it.
+Real body_size(const Model& model, int body);
+
 // The state at time 0: the scene's poses and velocities, centres of mass in world space.
 State initial_state(const Model& model);
 

@@ -1,7 +1,6 @@
 #include "world/state_hash.hpp"
 
 #include <cstdio>
-#include <cstring>
 
 namespace tem {
 namespace {
