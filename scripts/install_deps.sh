@@ -10,6 +10,8 @@ packages=(
   libqhull-dev           # convex hulls of user points
   libgtest-dev           # tests
   libbenchmark-dev       # benchmarks
+  python3-meshio         # tests: reads the ParaView output back
+  python3-numpy python3-matplotlib   # tools/figures.py
 )
 missing=()
 for p in "${packages[@]}"; do

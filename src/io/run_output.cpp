@@ -43,6 +43,8 @@ RunOutput::RunOutput(const std::string& directory, const Model& model, bool cont
   open(bodies_, directory + "/bodies.csv", "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz");
   open(energy_, directory + "/energy.csv", "time,kinetic,potential,total,contacts,max_depth");
   if (contacts) open(contacts_, directory + "/contacts.csv", kContactsCsvHeader);
+  if (model.scene.output.paraview)
+    paraview_ = std::make_unique<ParaviewOutput>(directory, model, std::nullopt);
 }
 
 void RunOutput::write(const Model& model, const State& state, const Workspace& workspace) {
@@ -81,6 +83,7 @@ void RunOutput::write(const Model& model, const State& state, const Workspace& w
   }
   if (!bodies_ || !energy_ || (with_contacts_ && !contacts_))
     throw std::runtime_error("writing the results failed (disk full?)");
+  if (paraview_) paraview_->write(model, state, workspace);
 }
 
 }  // namespace tem

@@ -4,8 +4,10 @@
 #pragma once
 
 #include <fstream>
+#include <memory>
 #include <string>
 
+#include "io/paraview_output.hpp"
 #include "world/step.hpp"
 
 namespace tem {
@@ -22,6 +24,7 @@ class RunOutput {
  private:
   std::ofstream bodies_, energy_, contacts_;
   bool with_contacts_;
+  std::unique_ptr<ParaviewOutput> paraview_;  // with output.paraview
 };
 
 // Attitude quaternion (w >= 0) of the rotation nearest to g: g itself in the default mode; in

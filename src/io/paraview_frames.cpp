@@ -1,0 +1,101 @@
+#include "io/paraview_frames.hpp"
+
+#include "collision/block_pose.hpp"
+#include "io/vtu_text.hpp"
+
+namespace tem {
+
+std::string bodies_vtu(const Model& model, const State& state) {
+  size_t point_count = 0, triangle_count = 0;
+  for (const Body& body : model.bodies)
+    for (const BlockInstance& instance : body.blocks) {
+      point_count += model.blocks[instance.block].nodes().size();
+      triangle_count += model.blocks[instance.block].triangles().size();
+    }
+
+  std::vector<Vec3> points, velocities, angular_velocities;
+  points.reserve(point_count);
+  velocities.reserve(point_count);
+  angular_velocities.reserve(point_count);
+  std::vector<std::int64_t> connectivity;
+  connectivity.reserve(3 * triangle_count);
+  std::vector<int> body_ids, block_ids;
+  body_ids.reserve(triangle_count);
+  block_ids.reserve(triangle_count);
+
+  int block_id = 0;
+  for (size_t b = 0; b < model.bodies.size(); ++b) {
+    const BodyState& s = state.bodies[b];
+    const Vec3 w = s.angular_velocity_world();
+    for (const BlockInstance& instance : model.bodies[b].blocks) {
+      const Block& block = model.blocks[instance.block];
+      const BlockPose pose = block_pose(instance, s);
+      const auto first = static_cast<std::int64_t>(points.size());
+      for (const Vec3& node : block.nodes()) {
+        const Vec3 p = pose.to_world(node);
+        points.push_back(p);
+        velocities.push_back(s.v + w.cross(p - s.x));
+        angular_velocities.push_back(w);
+      }
+      for (const Triangle& t : block.triangles()) {
+        for (int k = 0; k < 3; ++k) connectivity.push_back(first + t.nodes[k]);
+        body_ids.push_back(static_cast<int>(b));
+        block_ids.push_back(block_id);
+      }
+      ++block_id;
+    }
+  }
+
+  VtuText vtu(state.time, points.size(), body_ids.size());
+  vtu.begin_point_data();
+  vtu.vectors("velocity", velocities);
+  vtu.vectors("angular_velocity", angular_velocities);
+  vtu.end_point_data();
+  vtu.begin_cell_data();
+  vtu.ints("body_id", body_ids);
+  vtu.ints("block_id", block_ids);
+  vtu.end_cell_data();
+  vtu.points(points);
+  vtu.cells(connectivity, 3, kVtkTriangle);
+  return vtu.finish();
+}
+
+std::string contacts_vtu(Real time, const std::vector<ContactPatch>& patches,
+                         const std::vector<PatchForce>& forces) {
+  const size_t n = patches.size();
+  std::vector<Vec3> points(n), normals(n), force(n);
+  std::vector<Real> depth(n), fn(n), ft(n);
+  std::vector<int> body_a(n), body_b(n), wall(n);
+  std::vector<std::int64_t> connectivity(n);
+  for (size_t i = 0; i < n; ++i) {
+    const ContactPatch& p = patches[i];
+    const PatchForce f = forces.empty() ? PatchForce{} : forces[i];
+    points[i] = p.point;
+    normals[i] = p.normal;
+    depth[i] = p.depth;
+    fn[i] = f.normal;
+    ft[i] = f.tangential;
+    force[i] = f.normal * p.normal;
+    body_a[i] = p.body_a;
+    body_b[i] = p.body_b;
+    wall[i] = p.wall;
+    connectivity[i] = static_cast<std::int64_t>(i);
+  }
+
+  VtuText vtu(time, n, n);
+  vtu.begin_point_data();
+  vtu.vectors("normal", normals);
+  vtu.reals("depth", depth);
+  vtu.reals("fn", fn);
+  vtu.reals("ft", ft);
+  vtu.vectors("force", force);
+  vtu.ints("body_a", body_a);
+  vtu.ints("body_b", body_b);
+  vtu.ints("wall", wall);
+  vtu.end_point_data();
+  vtu.points(points);
+  vtu.cells(connectivity, 1, kVtkVertex);
+  return vtu.finish();
+}
+
+}  // namespace tem

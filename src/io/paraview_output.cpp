@@ -1,0 +1,127 @@
+#include "io/paraview_output.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "io/csv_number.hpp"
+#include "io/paraview_frames.hpp"
+
+namespace tem {
+namespace {
+
+namespace fs = std::filesystem;
+
+void write_text_file(const std::string& path, const std::string& text) {
+  std::ofstream file(path, std::ios::out | std::ios::trunc | std::ios::binary);
+  if (file) file.write(text.data(), static_cast<std::streamsize>(text.size()));
+  file.close();
+  if (!file) throw std::runtime_error(path + ": cannot be written");
+}
+
+// The step of a frame file name "bodies_<12 digits>.vtu" or "contacts_<12 digits>.vtu" (the
+// directory part ignored), or nullopt for any other name.
+std::optional<long long> frame_step(const std::string& path) {
+  const std::string name = fs::path(path).filename().string();
+  for (const std::string prefix : {"bodies_", "contacts_"}) {
+    if (name.size() != prefix.size() + 12 + 4 || name.compare(0, prefix.size(), prefix) != 0 ||
+        name.compare(name.size() - 4, 4, ".vtu") != 0)
+      continue;
+    long long step = 0;
+    for (size_t i = prefix.size(); i < prefix.size() + 12; ++i) {
+      if (name[i] < '0' || name[i] > '9') return std::nullopt;
+      step = 10 * step + (name[i] - '0');
+    }
+    return step;
+  }
+  return std::nullopt;
+}
+
+// The value of attribute `name` in one XML tag, or nullopt.
+std::optional<std::string> attribute(const std::string& tag, const std::string& name) {
+  const std::string key = " " + name + "=\"";
+  const size_t start = tag.find(key);
+  if (start == std::string::npos) return std::nullopt;
+  const size_t end = tag.find('"', start + key.size());
+  if (end == std::string::npos) return std::nullopt;
+  return tag.substr(start + key.size(), end - start - key.size());
+}
+
+}  // namespace
+
+std::string ParaviewOutput::bodies_file(long long step) {
+  char name[64];
+  std::snprintf(name, sizeof name, "paraview/bodies_%012lld.vtu", step);
+  return name;
+}
+
+std::string ParaviewOutput::contacts_file(long long step) {
+  char name[64];
+  std::snprintf(name, sizeof name, "paraview/contacts_%012lld.vtu", step);
+  return name;
+}
+
+ParaviewOutput::ParaviewOutput(const std::string& directory, const Model& /*model*/,
+                               std::optional<long long> resume_step)
+    : directory_(directory) {
+  const std::string frames_dir = directory + "/paraview";
+  std::error_code error;
+  fs::create_directories(frames_dir, error);
+  if (error) throw std::runtime_error(frames_dir + ": cannot be created: " + error.message());
+
+  // Frames of the existing collection up to the resume step, in the order it lists them (this
+  // reads tem.pvd as write_collection() writes it: one DataSet tag per line).
+  const long long keep_through = resume_step.value_or(-1);
+  if (resume_step) {
+    std::ifstream pvd(directory + "/tem.pvd");
+    std::string line;
+    while (std::getline(pvd, line)) {
+      if (line.find("<DataSet") == std::string::npos) continue;
+      const auto time = attribute(line, "timestep");
+      const auto file = attribute(line, "file");
+      const auto step = file ? frame_step(*file) : std::nullopt;
+      if (!time || !step || *step > keep_through) continue;
+      if (frames_.empty() || frames_.back().step != *step) frames_.push_back({*step, *time});
+    }
+  }
+
+  // Frame files past the kept frames belong to a run that is being replaced.
+  for (const fs::directory_entry& entry : fs::directory_iterator(frames_dir, error)) {
+    const auto step = frame_step(entry.path().string());
+    if (step && *step > keep_through) fs::remove(entry.path(), error);
+  }
+  write_collection();
+}
+
+void ParaviewOutput::write(const Model& model, const State& state, const Workspace& workspace) {
+  while (!frames_.empty() && frames_.back().step >= state.step) frames_.pop_back();
+  write_text_file(directory_ + "/" + bodies_file(state.step), bodies_vtu(model, state));
+  write_text_file(directory_ + "/" + contacts_file(state.step),
+                  contacts_vtu(state.time, workspace.patches, workspace.forces.patch_forces));
+  std::string time;
+  append_number(time, state.time);
+  frames_.push_back({state.step, time});
+  write_collection();
+}
+
+void ParaviewOutput::write_collection() const {
+  std::string text =
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      "<Collection>\n";
+  for (const Frame& frame : frames_) {
+    const std::string start = "<DataSet timestep=\"" + frame.time + "\" group=\"\" part=\"";
+    text += start + "0\" file=\"" + bodies_file(frame.step) + "\"/>\n";
+    text += start + "1\" file=\"" + contacts_file(frame.step) + "\"/>\n";
+  }
+  text += "</Collection>\n</VTKFile>\n";
+
+  const std::string path = directory_ + "/tem.pvd", temporary = path + ".tmp";
+  write_text_file(temporary, text);
+  std::error_code error;
+  fs::rename(temporary, path, error);
+  if (error) throw std::runtime_error(path + ": cannot be written: " + error.message());
+}
+
+}  // namespace tem

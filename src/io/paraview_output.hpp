@@ -1,0 +1,49 @@
+// ParaView output of `tem run` (scene key output.paraview): per output frame, the bodies'
+// surfaces and the contact patches as two .vtu files under DIR/paraview/, and DIR/tem.pvd, the
+// collection that lists them with their times (part 0 bodies, part 1 contacts).
+//
+// tem.pvd is rewritten whole after every frame, to a temporary file renamed over the old one, so
+// that it is a complete, valid collection at every moment, however the run ends. It only ever
+// lists frames whose files are complete.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "world/step.hpp"
+
+namespace tem {
+
+class ParaviewOutput {
+ public:
+  // Creates DIR/paraview/. With resume_step: keeps the frames of an existing DIR/tem.pvd whose
+  // step <= *resume_step and deletes the frame files of later steps, so that a resumed run
+  // continues the collection; without: starts a new collection and deletes the frame files of
+  // an earlier run. Writes tem.pvd at once. Throws std::runtime_error naming the file or
+  // directory that cannot be written.
+  ParaviewOutput(const std::string& directory, const Model& model,
+                 std::optional<long long> resume_step);
+
+  // One frame at state.step and state.time: the bodies at `state`, and the patches and patch
+  // forces of the step that starts from it (as bodies.csv and contacts.csv). A frame of a step
+  // already listed replaces it, and drops the frames after it.
+  void write(const Model& model, const State& state, const Workspace& workspace);
+
+  // The file names, relative to DIR, of the frame of `step`.
+  static std::string bodies_file(long long step);
+  static std::string contacts_file(long long step);
+
+ private:
+  struct Frame {
+    long long step;
+    std::string time;  // as written in tem.pvd, so a resumed collection keeps it digit for digit
+  };
+
+  void write_collection() const;
+
+  std::string directory_;
+  std::vector<Frame> frames_;
+};
+
+}  // namespace tem
