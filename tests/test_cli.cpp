@@ -17,45 +17,17 @@
 #include <vector>
 
 #include "io/scene_reader.hpp"
+#include "support/tem_process.hpp"
 
 namespace tem {
 namespace {
 
+using testing_support::contains;
+using testing_support::run_tem;
+using testing_support::slurp;
+using testing_support::TemRun;
+
 const std::string kSource = TEM_SOURCE_DIR;
-
-struct TemRun {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// Runs `tem ARGS` through the shell, capturing stdout and stderr separately.
-TemRun run_tem(const std::string& args) {
-  // The process id keeps files apart when ctest runs tests in parallel.
-  const std::string base = testing::TempDir() + "tem_cli_" + std::to_string(getpid());
-  const std::string out = base + ".out", err = base + ".err";
-  std::ostringstream command;  // (a stream: GCC 12 warns falsely on "'" + std::string)
-  command << "'" << TEM_BINARY << "' " << args << " >'" << out << "' 2>'" << err << "'";
-  const int raw = std::system(command.str().c_str());
-  TemRun run;
-  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  run.out = slurp(out);
-  run.err = slurp(err);
-  std::filesystem::remove(out);
-  std::filesystem::remove(err);
-  return run;
-}
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 Vec3 vec3(const nlohmann::json& j) { return Vec3(j[0], j[1], j[2]); }
 
@@ -320,12 +292,7 @@ TEST(Cli, RunWritesTheResultFiles) {
   const TemRun run = run_tem("run '" + scene + "' --out '" + dir + "' --contacts");
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_TRUE(contains(run.err, "steps/s")) << run.err;
-  auto lines = [](const std::string& text) {
-    std::vector<std::string> out;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) out.push_back(line);
-    return out;
-  };
+  using testing_support::lines;
   const auto bodies = lines(slurp(dir + "/bodies.csv"));
   const auto energy = lines(slurp(dir + "/energy.csv"));
   const auto contacts = lines(slurp(dir + "/contacts.csv"));
@@ -368,6 +335,27 @@ TEST(Cli, RunWarnsOfAPenaltyTimeStepAboveItsLimit) {
   const TemRun run = run_tem("run '" + scene + "' --out '" + dir + "'");
   EXPECT_EQ(run.status, 0) << run.err;
   EXPECT_TRUE(contains(run.err, "warning: time_step")) << run.err;
+  std::filesystem::remove_all(dir);
+}
+
+// Bodies placed into each other or into a wall are named, by `check` and by `run`, deepest
+// first; bodies that merely touch (1e-4 of their size) are not.
+TEST(Cli, DeepInitialOverlapIsNamed) {
+  const std::string scene = kSource + "/tests/scenes/overlapping_start.json";
+  const TemRun check = run_tem("check '" + scene + "'");
+  EXPECT_EQ(check.status, 0) << check.err;
+  const auto warnings = testing_support::lines(check.err);
+  ASSERT_EQ(warnings.size(), 2u) << check.err;
+  EXPECT_TRUE(contains(warnings[0], "warning: bodies 'lower' and 'upper' overlap by 0.05 ("))
+      << warnings[0];
+  EXPECT_TRUE(contains(warnings[1], "warning: body 'sunk' and the container's z min face overlap "
+                                    "by 0.02 ("))
+      << warnings[1];
+  const std::string dir = testing::TempDir() + "tem_overlap_" + std::to_string(getpid());
+  const TemRun run = run_tem("run '" + scene + "' --out '" + dir + "'");
+  EXPECT_EQ(run.status, 0) << run.err;
+  EXPECT_TRUE(contains(run.err, "warning: bodies 'lower' and 'upper' overlap")) << run.err;
+  EXPECT_FALSE(contains(run.err, "touching")) << run.err;
   std::filesystem::remove_all(dir);
 }
 

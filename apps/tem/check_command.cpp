@@ -5,6 +5,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "contact/initial_overlap.hpp"
 
 namespace tem::cli {
 namespace {
@@ -24,6 +25,8 @@ int check_command(const std::string& scene_file) {
     return kExitBadInput;
   }
   print_warnings(scene_file, *model);
+  for (const InitialOverlap& o : deep_initial_overlaps(*model))
+    std::fprintf(stderr, "%s: warning: %s\n", scene_file.c_str(), describe(*model, o).c_str());
   const SceneDef& scene = model->scene;
   const double steps = std::round(scene.duration / scene.time_step);
   std::printf("%s: ok (%s, %s, %s; %g s in %.0f steps of %g s)\n", scene_file.c_str(),

@@ -16,6 +16,8 @@ inline constexpr int kExitBadInput = 1;  // the scene has problems, or the file 
 inline constexpr int kExitUsage = 2;     // the command line itself is wrong
 inline constexpr int kExitFailed = 3;    // a run failed: its output could not be written, or
                                          // its state stopped being finite
+inline constexpr int kExitInterrupted = 130;  // `run` stopped by Ctrl-C or SIGTERM, after
+                                              // writing a checkpoint (128 + SIGINT, the shell's)
 
 // Reads the scene and builds its model. On failure prints every problem found, one per line
 // ("FILE: PATH: reason"), to stderr and returns nothing. `problem_count`, when given, receives
@@ -35,10 +37,11 @@ int check_command(const std::string& scene_file);
 // (to stdout, or to FILE).
 int contacts_command(const std::string& scene_file, const std::string& out_file);
 
-// `tem run SCENE --out DIR [--contacts] [--hash]`: simulates and writes bodies.csv,
-// energy.csv, scene.json (and contacts.csv) into DIR; with --hash, prints as its last line
-// `hash: <hex>` of the final state's exact bits.
+// `tem run SCENE --out DIR [--contacts] [--resume] [--hash]`: simulates and writes bodies.csv,
+// energy.csv, scene.json (and contacts.csv, checkpoint.bin) into DIR; with --resume, continues
+// from DIR/checkpoint.bin; with --hash, prints as its last line `hash: <hex>` of the final
+// state's exact bits.
 int run_command(const std::string& scene_file, const std::string& out_dir, bool contacts,
-                bool hash);
+                bool resume, bool hash);
 
 }  // namespace tem::cli

@@ -36,6 +36,9 @@ int run(int argc, char** argv) {
   run->add_option("scene", scene_file, "Scene file (JSON)")->required();
   run->add_option("--out", out_dir, "Directory for bodies.csv, energy.csv, scene.json")->required();
   run->add_flag("--contacts", with_contacts, "Also write contacts.csv (every patch at every output)");
+  bool with_resume = false;
+  run->add_flag("--resume", with_resume,
+                "Continue the run in --out from its last checkpoint (bit-identical results)");
   bool with_hash = false;
   run->add_flag("--hash", with_hash, "Print 'hash: <hex>' of the final state as the last line");
 
@@ -62,7 +65,7 @@ int run(int argc, char** argv) {
   if (*info) return info_command(scene_file, json);
   if (*check) return check_command(scene_file);
   if (*contacts) return contacts_command(scene_file, out_file);
-  if (*run) return run_command(scene_file, out_dir, with_contacts, with_hash);
+  if (*run) return run_command(scene_file, out_dir, with_contacts, with_resume, with_hash);
   return kExitUsage;  // unreachable: require_subcommand(1)
 }
 

@@ -7,8 +7,12 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "contact/initial_overlap.hpp"
 #include "forces/penalty.hpp"
+#include "io/checkpoint.hpp"
 #include "io/run_output.hpp"
+#include "progress.hpp"
+#include "stop_signal.hpp"
 #include "world/state_hash.hpp"
 #include "world/step.hpp"
 
@@ -32,45 +36,104 @@ void print_summary(const Model& model, const State& state, const Workspace& w, d
                t.unconverged_steps, e.kinetic, e.potential, e.total());
 }
 
+// The penalty model is explicit: above a tenth of the contact's period it goes unstable.
+void warn_about_time_step(const std::string& scene_file, const Model& model) {
+  const SceneDef& scene = model.scene;
+  if (scene.contact.model != ContactModel::penalty) return;
+  const Real limit = penalty_time_step_limit(model);
+  if (scene.time_step > limit)
+    std::cerr << scene_file << ": warning: time_step " << scene.time_step
+              << " is above the penalty contact's stable limit " << limit
+              << " (a tenth of the contact oscillation period 2 pi sqrt(m/k) of the lightest "
+                 "body); bodies may bounce off or pass through each other\n";
+}
+
 }  // namespace
 
 int run_command(const std::string& scene_file, const std::string& out_dir, bool contacts,
-                bool hash) {
+                bool resume, bool hash) {
   const std::optional<Model> loaded = load_model(scene_file);
   if (!loaded) return kExitBadInput;
   const Model& model = *loaded;
   print_warnings(scene_file, model);
   const SceneDef& scene = model.scene;
-
-  if (scene.contact.model == ContactModel::penalty) {
-    const Real limit = penalty_time_step_limit(model);
-    if (scene.time_step > limit)
-      std::cerr << scene_file << ": warning: time_step " << scene.time_step
-                << " is above the penalty contact's stable limit " << limit
-                << " (a tenth of the contact oscillation period 2 pi sqrt(m/k) of the lightest "
-                   "body); bodies may bounce off or pass through each other\n";
-  }
+  warn_about_time_step(scene_file, model);
 
   const long long total_steps = std::llround(scene.duration / scene.time_step);
   const long long every = std::max<long long>(1, std::llround(scene.output.interval / scene.time_step));
-  State state = initial_state(model);
+  const long long checkpoint_every =
+      scene.output.checkpoint_interval > 0
+          ? std::max<long long>(1, std::llround(scene.output.checkpoint_interval / scene.time_step))
+          : 0;
+  const std::string checkpoint_file = out_dir + "/checkpoint.bin";
+  State state;
   Workspace workspace;
+  std::optional<Checkpoint> resumed;
   try {
-    RunOutput output(out_dir, model, contacts);
+    if (resume) {
+      resumed = read_checkpoint(checkpoint_file);
+      if (resumed->scene_fingerprint != scene_fingerprint(scene))
+        throw std::runtime_error(checkpoint_file + " was taken of another scene than " +
+                                 scene_file + " (only duration and checkpoint_interval may change)");
+      if (resumed->state.bodies.size() != model.bodies.size() ||
+          resumed->state.step > total_steps)
+        throw std::runtime_error(checkpoint_file + " is at step " +
+                                 std::to_string(resumed->state.step) + ", beyond the scene's " +
+                                 std::to_string(total_steps) + " steps");
+      state = resumed->state;
+      restore_memory(*resumed, workspace.forces);
+      std::cerr << "tem run: resuming at step " << state.step << " (t = " << state.time
+                << " s) from " << checkpoint_file << "\n";
+    } else {
+      state = initial_state(model);
+      for (const InitialOverlap& o : deep_initial_overlaps(model))
+        std::cerr << scene_file << ": warning: " << describe(model, o) << "\n";
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "tem run: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+
+  StopOnSignal stop;
+  try {
+    RunOutput output(out_dir, model, contacts, resumed ? &*resumed : nullptr);
+    auto save_checkpoint = [&] {
+      write_checkpoint(checkpoint_file,
+                       make_checkpoint(scene, state, workspace.forces, output.sizes()));
+    };
+    const long long first_step = state.step;
+    Progress progress(static_cast<double>(total_steps) * scene.time_step, first_step);
     const auto start = std::chrono::steady_clock::now();
-    for (long long k = 0;; ++k) {
+    for (long long k = first_step;; ++k) {
+      // Checkpoints are taken where a step begins, before its rows are written: resuming from
+      // one redoes that step's rows exactly.
+      if (stop.requested()) {
+        save_checkpoint();
+        progress.finish();
+        std::cerr << "tem run: stopped by signal at step " << k << " (t = " << state.time
+                  << " s); every file in " << out_dir << " is complete up to there.\n"
+                  << "  continue with: tem run " << scene_file << " --out " << out_dir
+                  << (contacts ? " --contacts" : "") << " --resume\n";
+        return kExitInterrupted;
+      }
+      if ((checkpoint_every > 0 && k % checkpoint_every == 0 && k != first_step) ||
+          k == total_steps)
+        save_checkpoint();
       find_contact_forces(model, state, workspace);
       if (k % every == 0 || k == total_steps) output.write(model, state, workspace);
       if (k == total_steps) break;
       advance(model, state, workspace);
       const int bad = first_non_finite_body(state);
       if (bad >= 0) {
+        progress.finish();
         std::cerr << scene_file << ": the state of body '" << model.bodies[bad].name
                   << "' stopped being finite at step " << state.step << " (t = " << state.time
                   << " s); the results up to the last output row are in " << out_dir << "\n";
         return kExitFailed;
       }
+      progress.update(state.step, state.time);
     }
+    progress.finish();
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     print_summary(model, state, workspace, wall);

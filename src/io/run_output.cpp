@@ -12,7 +12,21 @@
 namespace tem {
 namespace {
 
-void open(std::ofstream& file, const std::string& path, const char* header) {
+// A new file with its header; or, resuming, the earlier run's file cut back to `size` bytes.
+void open(std::ofstream& file, const std::string& path, const char* header,
+          std::int64_t resume_size) {
+  if (resume_size >= 0) {
+    std::error_code error;
+    const auto size = std::filesystem::file_size(path, error);
+    if (error || size < static_cast<std::uintmax_t>(resume_size))
+      throw std::runtime_error(path + ": shorter than at the checkpoint; cannot resume");
+    std::filesystem::resize_file(path, static_cast<std::uintmax_t>(resume_size), error);
+    if (error) throw std::runtime_error(path + ": cannot be cut back: " + error.message());
+    // Not ios::app: tellp (the sizes a checkpoint records) starts at 0 there until a write.
+    file.open(path, std::ios::in | std::ios::out | std::ios::ate);
+    if (!file) throw std::runtime_error(path + ": cannot be written");
+    return;
+  }
   file.open(path, std::ios::out | std::ios::trunc);
   if (!file) throw std::runtime_error(path + ": cannot be written");
   file << header << '\n' << std::flush;
@@ -32,19 +46,32 @@ Quat attitude_quaternion(const Mat3& g) {
   return q;
 }
 
-RunOutput::RunOutput(const std::string& directory, const Model& model, bool contacts)
+RunOutput::RunOutput(const std::string& directory, const Model& model, bool contacts,
+                     const Checkpoint* checkpoint)
     : with_contacts_(contacts) {
+  const OutputSizes* resume = checkpoint ? &checkpoint->sizes : nullptr;
+  if (resume && (resume->contacts >= 0) != contacts)
+    throw std::runtime_error(std::string("the run being resumed was started ") +
+                             (contacts ? "without" : "with") +
+                             " --contacts; resume it the same way");
   std::error_code error;
   std::filesystem::create_directories(directory, error);
   if (error) throw std::runtime_error(directory + ": cannot be created: " + error.message());
   std::string message;
   if (!write_scene_file(model.scene, directory + "/scene.json", &message))
     throw std::runtime_error(message);
-  open(bodies_, directory + "/bodies.csv", "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz");
-  open(energy_, directory + "/energy.csv", "time,kinetic,potential,total,contacts,max_depth");
-  if (contacts) open(contacts_, directory + "/contacts.csv", kContactsCsvHeader);
+  open(bodies_, directory + "/bodies.csv", "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz",
+       resume ? resume->bodies : -1);
+  open(energy_, directory + "/energy.csv", "time,kinetic,potential,total,contacts,max_depth",
+       resume ? resume->energy : -1);
+  if (contacts)
+    open(contacts_, directory + "/contacts.csv", kContactsCsvHeader,
+         resume ? resume->contacts : -1);
   if (model.scene.output.paraview)
-    paraview_ = std::make_unique<ParaviewOutput>(directory, model, std::nullopt);
+    // The frame of the checkpoint's step is written again by the resumed run.
+    paraview_ = std::make_unique<ParaviewOutput>(
+        directory, model,
+        checkpoint ? std::optional<long long>(checkpoint->state.step - 1) : std::nullopt);
 }
 
 void RunOutput::write(const Model& model, const State& state, const Workspace& workspace) {
@@ -84,6 +111,14 @@ void RunOutput::write(const Model& model, const State& state, const Workspace& w
   if (!bodies_ || !energy_ || (with_contacts_ && !contacts_))
     throw std::runtime_error("writing the results failed (disk full?)");
   if (paraview_) paraview_->write(model, state, workspace);
+}
+
+OutputSizes RunOutput::sizes() {
+  OutputSizes s;
+  s.bodies = static_cast<std::int64_t>(bodies_.tellp());
+  s.energy = static_cast<std::int64_t>(energy_.tellp());
+  s.contacts = with_contacts_ ? static_cast<std::int64_t>(contacts_.tellp()) : -1;
+  return s;
 }
 
 }  // namespace tem

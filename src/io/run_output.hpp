@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "io/checkpoint.hpp"
 #include "io/paraview_output.hpp"
 #include "world/step.hpp"
 
@@ -15,11 +16,16 @@ namespace tem {
 class RunOutput {
  public:
   // Creates `directory` if needed and writes scene.json and the CSV headers. Throws
-  // std::runtime_error naming the file that cannot be written.
-  RunOutput(const std::string& directory, const Model& model, bool contacts);
+  // std::runtime_error naming the file that cannot be written. With `resume`, the files of an
+  // earlier run are cut back to the sizes they had at its checkpoint and appended to.
+  RunOutput(const std::string& directory, const Model& model, bool contacts,
+            const Checkpoint* resume = nullptr);
 
   // Rows for `state`, with the patches and forces of the step that starts from it.
   void write(const Model& model, const State& state, const Workspace& workspace);
+
+  // How long the files are now (what a checkpoint records).
+  OutputSizes sizes();
 
  private:
   std::ofstream bodies_, energy_, contacts_;

@@ -1,0 +1,219 @@
+#include "io/checkpoint.hpp"
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <type_traits>
+
+#include "io/scene_writer.hpp"
+
+namespace tem {
+namespace {
+
+constexpr char kMagic[8] = {'T', 'E', 'M', 'C', 'K', 'P', 'T', '\n'};
+constexpr std::uint32_t kVersion = 1;
+
+std::uint64_t fnv1a(const char* data, std::size_t size) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (std::size_t i = 0; i < size; ++i) {
+    h ^= static_cast<unsigned char>(data[i]);
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+// Appends values as their bytes: numbers, and vectors and matrices as their coefficients.
+class Writer {
+ public:
+  template <class T>
+  void value(const T& v) {
+    static_assert(std::is_arithmetic_v<T>);
+    raw(&v, sizeof v);
+  }
+  template <int R, int C>
+  void value(const Eigen::Matrix<Real, R, C>& m) {
+    raw(m.data(), sizeof(Real) * R * C);
+  }
+  std::string& bytes() { return bytes_; }
+
+ private:
+  void raw(const void* data, std::size_t size) {
+    const char* p = static_cast<const char*>(data);
+    bytes_.insert(bytes_.end(), p, p + size);
+  }
+  std::string bytes_;
+};
+
+// Reads them back, refusing to run past the end.
+class Reader {
+ public:
+  Reader(const std::string& bytes, std::size_t end, const std::string& path)
+      : bytes_(bytes), end_(end), path_(path) {}
+  template <class T>
+  void value(T& v) {
+    if constexpr (std::is_arithmetic_v<T>) {
+      take(&v, sizeof v);
+    } else {
+      take(v.data(), sizeof(Real) * v.size());
+    }
+  }
+  template <class T>
+  T value() {
+    T v;
+    value(v);
+    return v;
+  }
+  // A count of records that each take at least `record_size` bytes.
+  std::uint64_t count(std::size_t record_size) {
+    const auto n = value<std::uint64_t>();
+    if (n > (end_ - at_) / record_size) truncated();
+    return n;
+  }
+  bool at_end() const { return at_ == end_; }
+
+ private:
+  void take(void* out, std::size_t size) {
+    if (size > end_ - at_) truncated();
+    std::memcpy(out, bytes_.data() + at_, size);
+    at_ += size;
+  }
+  [[noreturn]] void truncated() const {
+    throw std::runtime_error(path_ + ": the checkpoint is truncated");
+  }
+  const std::string& bytes_;
+  std::size_t end_, at_ = sizeof kMagic;
+  const std::string& path_;
+};
+
+// Every record is written field by field, the same order for writing and reading: `fields`
+// takes a function that it calls on each field in turn.
+template <class F, class B>
+void fields(B& b, F&& f) {
+  if constexpr (std::is_same_v<std::remove_const_t<B>, BodyState>) {
+    f(b.x), f(b.v), f(b.g), f(b.omega), f(b.prev_torque), f(b.has_prev_torque);
+  } else if constexpr (std::is_same_v<std::remove_const_t<B>, ContactPoint>) {
+    f(b.patch), f(b.body_a), f(b.body_b), f(b.wall), f(b.point), f(b.normal), f(b.tangent1),
+        f(b.tangent2), f(b.depth);
+  } else if constexpr (std::is_same_v<std::remove_const_t<B>, PointImpulse>) {
+    f(b.normal);
+  } else if constexpr (std::is_same_v<std::remove_const_t<B>, PatchFriction>) {
+    f(b.first), f(b.last), f(b.body_a), f(b.body_b), f(b.wall), f(b.centre), f(b.normal),
+        f(b.tangent1), f(b.tangent2), f(b.start_slip), f(b.t1), f(b.t2), f(b.twist);
+  } else {
+    static_assert(std::is_same_v<std::remove_const_t<B>, PenaltySpring>);
+    f(b.body_a), f(b.body_b), f(b.wall), f(b.point), f(b.stretch);
+  }
+}
+
+template <class T>
+void write_records(Writer& w, const std::vector<T>& records) {
+  w.value(static_cast<std::uint64_t>(records.size()));
+  for (const T& r : records) fields(r, [&](const auto& field) { w.value(field); });
+}
+
+template <class T>
+std::vector<T> read_records(Reader& r) {
+  std::vector<T> records(r.count(1));
+  for (T& record : records) fields(record, [&](auto& field) { r.value(field); });
+  return records;
+}
+
+}  // namespace
+
+std::uint64_t scene_fingerprint(const SceneDef& scene) {
+  // The duration and the checkpoint interval may change on resuming: a run can be extended.
+  SceneDef kept = scene;
+  kept.duration = 0;
+  kept.output.checkpoint_interval = 0;
+  const std::string text = write_scene_text(kept);
+  return fnv1a(text.data(), text.size());
+}
+
+Checkpoint make_checkpoint(const SceneDef& scene, const State& state, const ContactForces& forces,
+                           const OutputSizes& sizes) {
+  Checkpoint c;
+  c.scene_fingerprint = scene_fingerprint(scene);
+  c.sizes = sizes;
+  c.state = state;
+  c.points = forces.points;
+  c.impulses = forces.impulses;
+  c.friction = forces.friction;
+  c.springs = forces.springs;
+  return c;
+}
+
+void restore_memory(const Checkpoint& checkpoint, ContactForces& forces) {
+  forces.points = checkpoint.points;
+  forces.impulses = checkpoint.impulses;
+  forces.friction = checkpoint.friction;
+  forces.springs = checkpoint.springs;
+}
+
+void write_checkpoint(const std::string& path, const Checkpoint& c) {
+  Writer w;
+  w.bytes().assign(kMagic, sizeof kMagic);
+  w.value(kVersion);
+  w.value(c.scene_fingerprint);
+  w.value(c.sizes.bodies);
+  w.value(c.sizes.energy);
+  w.value(c.sizes.contacts);
+  w.value(c.state.time);
+  w.value(c.state.step);
+  write_records(w, c.state.bodies);
+  write_records(w, c.points);
+  write_records(w, c.impulses);
+  write_records(w, c.friction);
+  write_records(w, c.springs);
+  w.value(fnv1a(w.bytes().data(), w.bytes().size()));
+
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+    file.write(w.bytes().data(), static_cast<std::streamsize>(w.bytes().size()));
+    file.flush();
+    if (!file) throw std::runtime_error(temporary + ": the checkpoint cannot be written");
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, path, error);
+  if (error) throw std::runtime_error(path + ": cannot be replaced: " + error.message());
+}
+
+Checkpoint read_checkpoint(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw std::runtime_error(path + ": no checkpoint to resume from");
+  const std::string bytes{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+  if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+    throw std::runtime_error(path + ": not a TEM checkpoint");
+  constexpr std::size_t kSum = sizeof(std::uint64_t);
+  if (bytes.size() < sizeof kMagic + sizeof kVersion + kSum)
+    throw std::runtime_error(path + ": the checkpoint is truncated");
+  const std::size_t end = bytes.size() - kSum;
+  std::uint64_t stored;
+  std::memcpy(&stored, bytes.data() + end, kSum);
+  Reader r(bytes, end, path);
+  const auto version = r.value<std::uint32_t>();
+  if (version != kVersion)
+    throw std::runtime_error(path + ": checkpoint version " + std::to_string(version) +
+                             ", this tem reads version " + std::to_string(kVersion));
+  if (stored != fnv1a(bytes.data(), end))
+    throw std::runtime_error(path + ": the checkpoint is corrupted (checksum mismatch)");
+
+  Checkpoint c;
+  c.scene_fingerprint = r.value<std::uint64_t>();
+  c.sizes.bodies = r.value<std::int64_t>();
+  c.sizes.energy = r.value<std::int64_t>();
+  c.sizes.contacts = r.value<std::int64_t>();
+  c.state.time = r.value<Real>();
+  c.state.step = r.value<long long>();
+  c.state.bodies = read_records<BodyState>(r);
+  c.points = read_records<ContactPoint>(r);
+  c.impulses = read_records<PointImpulse>(r);
+  c.friction = read_records<PatchFriction>(r);
+  c.springs = read_records<PenaltySpring>(r);
+  if (!r.at_end()) throw std::runtime_error(path + ": the checkpoint has trailing bytes");
+  return c;
+}
+
+}  // namespace tem

@@ -1,0 +1,66 @@
+// Checkpoints of a run (`tem run`, interface.md): everything needed to continue a run so that
+// the continuation is bit-identical to a run that was never stopped.
+//
+// What that takes besides the State: the contact solver's memory (the last step's contact
+// points, their impulses and the patches' friction, which warm-start the next step, and the
+// penalty model's tangential springs). A warm start changes where Gauss-Seidel stops, so a
+// resumed run without it would differ in the last bits. Everything else a step keeps between
+// steps is scratch, rebuilt from the State.
+//
+// The file also records how long each output file was when the checkpoint was taken: the rows
+// written after it are cut off on resuming and written again by the continued run, so the files
+// of a resumed run are byte for byte those of an uninterrupted one.
+//
+// Format: binary, in this machine's byte order and double layout (not meant to move between
+// architectures): a magic string and version, the fingerprint of the scene, the output sizes,
+// the State, the memory, and an FNV-1a checksum of all of it. Written to a temporary file and
+// renamed over the old one, so a run killed while writing leaves the previous checkpoint whole.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "forces/contact_forces.hpp"
+#include "world/model.hpp"
+
+namespace tem {
+
+// The sizes in bytes of the run's output files when the checkpoint was taken (-1: the file is
+// not written by this run).
+struct OutputSizes {
+  std::int64_t bodies = 0, energy = 0, contacts = -1;
+};
+
+struct Checkpoint {
+  std::uint64_t scene_fingerprint = 0;
+  OutputSizes sizes;
+  State state;
+  // The contact memory the next step starts from (ContactForces: points, impulses, friction,
+  // springs of the last step).
+  std::vector<ContactPoint> points;
+  std::vector<PointImpulse> impulses;
+  std::vector<PatchFriction> friction;
+  std::vector<PenaltySpring> springs;
+};
+
+// The fingerprint of a scene: a hash of the scene as `scene.json` states it (every default
+// filled in), but for its duration and checkpoint interval. A checkpoint resumes only the scene
+// it was taken of, possibly with a longer duration.
+std::uint64_t scene_fingerprint(const SceneDef& scene);
+
+// The checkpoint of `state`, whose next step will start from the memory in `forces`.
+Checkpoint make_checkpoint(const SceneDef& scene, const State& state, const ContactForces& forces,
+                           const OutputSizes& sizes);
+
+// Puts a checkpoint's memory back into a fresh ContactForces.
+void restore_memory(const Checkpoint& checkpoint, ContactForces& forces);
+
+// Writes atomically (temporary file, then rename). Throws std::runtime_error naming the file.
+void write_checkpoint(const std::string& path, const Checkpoint& checkpoint);
+
+// Reads and verifies a checkpoint. Throws std::runtime_error that says what is wrong (missing,
+// truncated, corrupted, another version).
+Checkpoint read_checkpoint(const std::string& path);
+
+}  // namespace tem

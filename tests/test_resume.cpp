@@ -1,0 +1,184 @@
+// Long runs (interface.md): a run stopped by Ctrl-C, or killed outright, and resumed with
+// `tem run --resume` gives the same bytes as a run that was never stopped; a finished run can be
+// extended. The scene (tests/scenes/resume_pile.json) has three bodies that collide, slide and
+// come to rest on the floor and on each other, so the contact solver's memory (warm start,
+// friction) matters: a resume that lost it would differ in the last bits.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include "io/checkpoint.hpp"
+#include "support/tem_process.hpp"
+
+namespace tem {
+namespace {
+
+using testing_support::contains;
+using testing_support::lines;
+using testing_support::run_tem;
+using testing_support::slurp;
+using testing_support::temp_path;
+using testing_support::TemProcess;
+using testing_support::TemRun;
+
+const std::string kScene = std::string(TEM_SOURCE_DIR) + "/tests/scenes/resume_pile.json";
+
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+// The reference: the scene run once without stopping.
+struct Reference {
+  std::string bodies, energy, contacts, hash;
+};
+
+const Reference& reference() {
+  static const Reference ref = [] {
+    const std::string dir = temp_path("resume_ref");
+    const TemRun run = run_tem("run " + quoted(kScene) + " --out " + quoted(dir) +
+                               " --contacts --hash");
+    EXPECT_EQ(run.status, 0) << run.err;
+    Reference r{slurp(dir + "/bodies.csv"), slurp(dir + "/energy.csv"),
+                slurp(dir + "/contacts.csv"), lines(run.out).empty() ? "" : lines(run.out).back()};
+    std::filesystem::remove_all(dir);
+    return r;
+  }();
+  return ref;
+}
+
+// Waits until the run has written rows up to at least `time` (energy.csv), or 60 s.
+void wait_for_time(const std::string& dir, double time) {
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (std::chrono::steady_clock::now() < give_up) {
+    const auto rows = lines(slurp(dir + "/energy.csv"));
+    if (rows.size() > 1 && std::stod(rows.back().substr(0, rows.back().find(','))) >= time) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+}
+
+void expect_same_as_reference(const std::string& dir, const TemRun& resumed) {
+  const Reference& ref = reference();
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  EXPECT_TRUE(contains(resumed.err, "resuming at step")) << resumed.err;
+  EXPECT_EQ(lines(resumed.out).back(), ref.hash);
+  EXPECT_TRUE(slurp(dir + "/bodies.csv") == ref.bodies) << "bodies.csv differs";
+  EXPECT_TRUE(slurp(dir + "/energy.csv") == ref.energy) << "energy.csv differs";
+  EXPECT_TRUE(slurp(dir + "/contacts.csv") == ref.contacts) << "contacts.csv differs";
+}
+
+TEST(Resume, ReferenceRunComesToRestWithContacts) {
+  // What makes the test meaningful: the bodies touch (contact rows) for most of the run.
+  const auto contact_rows = lines(reference().contacts);
+  EXPECT_GT(contact_rows.size(), 150u);
+  EXPECT_EQ(reference().hash.size(), 6u + 16u);
+}
+
+// Ctrl-C: the run stops where it is with a checkpoint of that very step and exit status 130;
+// the files hold complete rows; --resume finishes it with the reference's bytes.
+TEST(Resume, AfterCtrlCTheResultIsBitIdentical) {
+  const std::string dir = temp_path("resume_int");
+  std::filesystem::remove_all(dir);
+  TemProcess process({"run", kScene, "--out", dir, "--contacts", "--hash"});
+  ASSERT_TRUE(process.started());
+  wait_for_time(dir, 0.15);
+  process.signal(SIGINT);
+  const TemRun stopped = process.wait();
+  ASSERT_EQ(stopped.status, 130) << "the run ended before the signal: " << stopped.err;
+  EXPECT_TRUE(contains(stopped.err, "--resume")) << stopped.err;
+  const Checkpoint at = read_checkpoint(dir + "/checkpoint.bin");
+  EXPECT_GE(at.state.time, 0.15);
+  EXPECT_LT(at.state.time, 1.0);
+  // Every line written so far is whole.
+  const std::string energy = slurp(dir + "/energy.csv");
+  ASSERT_FALSE(energy.empty());
+  EXPECT_EQ(energy.back(), '\n');
+  EXPECT_EQ(reference().energy.substr(0, energy.size()), energy);
+
+  expect_same_as_reference(
+      dir, run_tem("run " + quoted(kScene) + " --out " + quoted(dir) + " --contacts --hash --resume"));
+  std::filesystem::remove_all(dir);
+}
+
+// A run killed without warning (SIGKILL, a power cut) resumes from its last periodic checkpoint
+// (every 0.1 s of simulated time); the rows written after it are cut off and written again.
+TEST(Resume, AfterAKillTheResultIsBitIdentical) {
+  const std::string dir = temp_path("resume_kill");
+  std::filesystem::remove_all(dir);
+  TemProcess process({"run", kScene, "--out", dir, "--contacts", "--hash"});
+  ASSERT_TRUE(process.started());
+  wait_for_time(dir, 0.35);
+  process.signal(SIGKILL);
+  ASSERT_EQ(process.wait().status, 128 + SIGKILL);
+  const Checkpoint at = read_checkpoint(dir + "/checkpoint.bin");
+  EXPECT_GE(at.state.time, 0.3 - 1e-12);
+  EXPECT_LT(at.state.time, 1.0);
+  EXPECT_EQ(at.state.step % 1000, 0);
+
+  expect_same_as_reference(
+      dir, run_tem("run " + quoted(kScene) + " --out " + quoted(dir) + " --contacts --hash --resume"));
+  std::filesystem::remove_all(dir);
+}
+
+// A run that finished at 0.4 s, resumed with the duration raised to 1 s, equals the 1 s run.
+TEST(Resume, AFinishedRunCanBeExtended) {
+  const std::string dir = temp_path("resume_ext");
+  const std::string short_scene = temp_path("resume_short.json");
+  std::string text = slurp(kScene);
+  text.replace(text.find("\"duration\": 1.0"), 15, "\"duration\": 0.4");
+  std::ofstream(short_scene) << text;
+  ASSERT_EQ(run_tem("run " + quoted(short_scene) + " --out " + quoted(dir) + " --contacts").status, 0);
+  expect_same_as_reference(
+      dir, run_tem("run " + quoted(kScene) + " --out " + quoted(dir) + " --contacts --hash --resume"));
+  std::filesystem::remove_all(dir);
+  std::filesystem::remove(short_scene);
+}
+
+// What resuming refuses, each with a message that says why.
+TEST(Resume, RefusesWhatItCannotContinue) {
+  const std::string dir = temp_path("resume_bad");
+  std::filesystem::remove_all(dir);
+  const TemRun none = run_tem("run " + quoted(kScene) + " --out " + quoted(dir) + " --resume");
+  EXPECT_NE(none.status, 0);
+  EXPECT_TRUE(contains(none.err, "no checkpoint to resume from")) << none.err;
+
+  ASSERT_EQ(run_tem("run " + quoted(kScene) + " --out " + quoted(dir)).status, 0);
+  // Another scene (here: other friction) in the same directory.
+  const std::string other = temp_path("resume_other.json");
+  std::string text = slurp(kScene);
+  text.replace(text.find("\"friction\": 0.3"), 15, "\"friction\": 0.4");
+  std::ofstream(other) << text;
+  const TemRun wrong_scene = run_tem("run " + quoted(other) + " --out " + quoted(dir) + " --resume");
+  EXPECT_NE(wrong_scene.status, 0);
+  EXPECT_TRUE(contains(wrong_scene.err, "another scene")) << wrong_scene.err;
+  // With --contacts when the run was started without.
+  const TemRun flags =
+      run_tem("run " + quoted(kScene) + " --out " + quoted(dir) + " --contacts --resume");
+  EXPECT_NE(flags.status, 0);
+  EXPECT_TRUE(contains(flags.err, "resume it the same way")) << flags.err;
+  // A damaged checkpoint.
+  {
+    std::fstream file(dir + "/checkpoint.bin", std::ios::in | std::ios::out | std::ios::binary);
+    file.seekp(40);
+    file.put('\x7f');
+  }
+  const TemRun corrupted = run_tem("run " + quoted(kScene) + " --out " + quoted(dir) + " --resume");
+  EXPECT_NE(corrupted.status, 0);
+  EXPECT_TRUE(contains(corrupted.err, "corrupted")) << corrupted.err;
+  std::filesystem::remove_all(dir);
+  std::filesystem::remove(other);
+}
+
+// Progress goes to a terminal only: with stderr in a file there is no carriage-return line.
+TEST(Resume, NoProgressLineWhenNotATerminal) {
+  const std::string dir = temp_path("resume_quiet");
+  const TemRun run = run_tem("run " + quoted(kScene) + " --out " + quoted(dir));
+  EXPECT_EQ(run.status, 0);
+  EXPECT_FALSE(contains(run.err, "\r")) << run.err;
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace tem
