@@ -10,6 +10,7 @@ packages=(
   libqhull-dev           # convex hulls of user points
   libgtest-dev           # tests
   libbenchmark-dev       # benchmarks
+  clang libclang-rt-14-dev   # libFuzzer for the scene parser (scripts/fuzz.sh)
   python3-meshio         # tests: reads the ParaView output back
   python3-numpy python3-matplotlib   # tools/figures.py
 )
