@@ -45,6 +45,8 @@ inline Model coin_pile(int count, unsigned seed = 1) {
     model.scene.bodies.push_back(def);
     Body body = coin;
     body.name = def.name;
+    body.start_position = def.position;
+    body.start_rotation = def.rotation;
     model.bodies.push_back(body);
   }
   return model;

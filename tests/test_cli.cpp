@@ -186,14 +186,18 @@ TEST(Cli, CheckRejectsEveryBrokenScene) {
 
 // Scenes the reader accepts but the core cannot build: the message still names the shape.
 TEST(Cli, CheckReportsGeometricProblemsWithTheirPath) {
-  for (const std::string file :
-       {"coplanar_points.json", "interior_point.json", "ring_nonconvex_blocks.json"}) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"coplanar_points.json", "bodies[0].shape"},
+      {"interior_point.json", "bodies[0].shape"},
+      {"ring_nonconvex_blocks.json", "bodies[0].shape"},
+      {"fill_too_dense.json", "fill[0].count: only "}};
+  for (const auto& [file, where] : cases) {
     SCOPED_TRACE(file);
     const std::string scene = kSource + "/tests/scenes/bad_geometry/" + file;
     ASSERT_TRUE(read_scene_file(scene).ok());
     const TemRun run = run_tem("check '" + scene + "'");
     EXPECT_EQ(run.status, 1);
-    EXPECT_TRUE(contains(run.err, scene + ": bodies[0].shape")) << run.err;
+    EXPECT_TRUE(contains(run.err, scene + ": " + where)) << run.err;
   }
 }
 
@@ -356,6 +360,22 @@ TEST(Cli, DeepInitialOverlapIsNamed) {
   EXPECT_EQ(run.status, 0) << run.err;
   EXPECT_TRUE(contains(run.err, "warning: bodies 'lower' and 'upper' overlap")) << run.err;
   EXPECT_FALSE(contains(run.err, "touching")) << run.err;
+  std::filesystem::remove_all(dir);
+}
+
+// A state that stops being finite (here: an angular velocity of 1e300 rad/s, valid input that
+// overflows the integrator) ends the run with status 3, a message naming the body and the step,
+// and the rows written before it intact.
+TEST(Cli, NonFiniteStateStopsTheRunNamingBodyAndStep) {
+  const std::string scene = kSource + "/tests/scenes/blows_up.json";
+  const std::string dir = testing::TempDir() + "tem_nonfinite_" + std::to_string(getpid());
+  const TemRun run = run_tem("run '" + scene + "' --out '" + dir + "'");
+  EXPECT_EQ(run.status, 3) << run.err;
+  EXPECT_TRUE(contains(run.err, "the state of body 'spinner' stopped being finite at step 1 "))
+      << run.err;
+  const auto bodies = testing_support::lines(slurp(dir + "/bodies.csv"));
+  ASSERT_EQ(bodies.size(), 3u);  // header and the two bodies at t = 0
+  EXPECT_EQ(bodies[2].substr(0, 10), "0,spinner,");
   std::filesystem::remove_all(dir);
 }
 

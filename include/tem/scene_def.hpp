@@ -4,6 +4,7 @@
 // degenerate block, say) can still name where in the file the problem is.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -62,6 +63,19 @@ struct BodyDef {
   bool fixed = false;
 };
 
+// Particle insertion (docs/scene_format.md, `fill`): `count` copies of one body, named
+// `name_0`, `name_1`, ..., at random positions in `region` and random orientations (uniform over
+// all rotations), from a seeded generator, placed so that no two bodies' bounding spheres (and
+// no body and the region's sides) overlap. The copies share the template's blocks.
+struct FillDef {
+  std::string path;  // "fill[i]"
+  std::string name;
+  int count = 0;
+  Vec3 region_min = Vec3::Zero(), region_max = Vec3::Zero();
+  std::uint64_t seed = 1;
+  BodyDef body;  // the template: shape, density, velocity, angular_velocity, fixed
+};
+
 struct ContactDef {
   ContactModel model = ContactModel::semm;
   Real friction = 0.3;
@@ -106,6 +120,7 @@ struct SceneDef {
   std::optional<ContainerDef> container;
   std::vector<WallDef> walls;
   std::vector<BodyDef> bodies;
+  std::vector<FillDef> fill;  // bodies made by insertion, after `bodies`
   OutputDef output;
 };
 

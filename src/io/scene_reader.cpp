@@ -15,6 +15,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -87,7 +88,7 @@ Mat3 rotation_z_cs(Real c, Real s) {
 // ---- Scene sections ----------------------------------------------------------------------
 
 const KeyList kSceneKeys = {"gravity",   "time_step", "duration", "integrator", "contact",
-                            "container", "walls",     "bodies",   "output"};
+                            "container", "walls",     "bodies",   "fill",       "output"};
 const KeyList kContactKeys = {"model",   "friction", "restitution", "stiffness",
                               "damping", "normals",  "points",      "law",
                               "tangential_stiffness"};
@@ -98,6 +99,10 @@ const KeyList kBodyKeys = {"name",          "shape",      "density",  "position"
                            "euler_zxz_deg", "quaternion", "velocity", "angular_velocity",
                            "fixed"};
 const KeyList kPoseKeys = {"position", "euler_zxz_deg", "quaternion"};
+const KeyList kFillKeys = {"name", "count", "region", "seed", "body"};
+const KeyList kFillBodyKeys = {"shape", "density", "velocity", "angular_velocity", "fixed"};
+// A fill larger than this is a typo, and would take minutes to place.
+constexpr int kMaxFillCount = 10'000'000;
 
 const std::vector<std::pair<std::string_view, ShapeType>> kShapeTypes = {
     {"prism", ShapeType::prism},
@@ -154,7 +159,10 @@ class SceneReader {
       if (read_container(*j, "container", &container)) scene->container = container;
     }
     if (const Json* j = Reader::get(root, "walls")) read_walls(*j, "walls", &scene->walls);
-    if (const Json* j = r_.need(root, "", "bodies")) read_bodies(*j, "bodies", &scene->bodies);
+    const Json* fill = Reader::get(root, "fill");
+    if (fill) read_fills(*fill, "fill", &scene->fill);
+    if (const Json* j = fill ? Reader::get(root, "bodies") : r_.need(root, "", "bodies"))
+      read_bodies(*j, "bodies", &scene->bodies, /*may_be_empty=*/fill != nullptr);
     if (const Json* j = Reader::get(root, "output")) read_output(*j, "output", &scene->output);
   }
 
@@ -307,12 +315,13 @@ class SceneReader {
     r_.read_bool(j, path, "paraview", &output->paraview);
   }
 
-  void read_bodies(const Json& j, const std::string& path, std::vector<BodyDef>* bodies) {
+  void read_bodies(const Json& j, const std::string& path, std::vector<BodyDef>* bodies,
+                   bool may_be_empty) {
     if (!j.is_array()) {
       r_.fail(path, "must be a list of bodies, got " + describe(j));
       return;
     }
-    if (j.empty()) {
+    if (j.empty() && !may_be_empty) {
       r_.fail(path, "must list at least one body, got an empty list");
       return;
     }
@@ -351,6 +360,56 @@ class SceneReader {
     r_.read_vec3(j, path, "angular_velocity", &body->angular_velocity);
     r_.read_bool(j, path, "fixed", &body->fixed);
     return name_ok;
+  }
+
+  void read_fills(const Json& j, const std::string& path, std::vector<FillDef>* fills) {
+    if (!j.is_array()) {
+      r_.fail(path, "must be a list of fills ({\"name\", \"count\", \"region\", \"body\"}), got " +
+                        describe(j));
+      return;
+    }
+    for (std::size_t i = 0; i < j.size(); ++i) {
+      FillDef fill;
+      fill.path = element(path, i);
+      const std::string& fpath = fill.path;
+      if (!r_.object(j[i], fpath)) continue;
+      r_.check_keys(j[i], fpath, kFillKeys);
+      if (const Json* n = r_.need(j[i], fpath, "name")) read_name(*n, fpath, &fill.name);
+      r_.read_int(j[i], fpath, "count", &fill.count, 1, kMaxFillCount, true);
+      if (const Json* region = r_.need(j[i], fpath, "region")) {
+        ContainerDef box;
+        if (read_container(*region, child(fpath, "region"), &box)) {
+          fill.region_min = box.min;
+          fill.region_max = box.max;
+        }
+      }
+      int seed = 1;
+      if (r_.read_int(j[i], fpath, "seed", &seed, 0, std::numeric_limits<int>::max()))
+        fill.seed = static_cast<std::uint64_t>(seed);
+      fill.body.path = child(fpath, "body");
+      fill.body.shape.path = child(fill.body.path, "shape");
+      if (const Json* b = r_.need(j[i], fpath, "body")) read_fill_body(*b, &fill.body);
+      fills->push_back(std::move(fill));
+    }
+  }
+
+  // The template of a fill: a body without name and pose, which the fill gives each copy.
+  void read_fill_body(const Json& j, BodyDef* body) {
+    const std::string& path = body->path;
+    if (!r_.object(j, path)) return;
+    r_.check_keys(j, path, kFillBodyKeys, [&](std::string_view key) -> std::string {
+      if (key == "name" || contains(kPoseKeys, key))
+        return "unknown key '" + std::string(key) +
+               "' (a fill names and places its bodies itself: set 'name' and 'region' on the "
+               "fill)";
+      return "";
+    });
+    if (const Json* s = r_.need(j, path, "shape"))
+      read_shape(*s, body->shape.path, &body->shape, /*is_part=*/false, 0);
+    r_.read_number(j, path, "density", &body->density, Bound::positive);
+    r_.read_vec3(j, path, "velocity", &body->velocity);
+    r_.read_vec3(j, path, "angular_velocity", &body->angular_velocity);
+    r_.read_bool(j, path, "fixed", &body->fixed);
   }
 
   // Names go into CSV columns and contact rows, where "wall" already names the walls.

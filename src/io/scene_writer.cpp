@@ -147,6 +147,20 @@ Json body_to_json(const BodyDef& body) {
   return j;
 }
 
+Json fill_to_json(const FillDef& fill) {
+  Json j;
+  j["name"] = fill.name;
+  j["count"] = fill.count;
+  j["region"] = Json{{"min", vec3(fill.region_min)}, {"max", vec3(fill.region_max)}};
+  j["seed"] = fill.seed;
+  j["body"] = Json{{"shape", shape_to_json(fill.body.shape, false)},
+                   {"density", fill.body.density},
+                   {"velocity", vec3(fill.body.velocity)},
+                   {"angular_velocity", vec3(fill.body.angular_velocity)},
+                   {"fixed", fill.body.fixed}};
+  return j;
+}
+
 // Like dump(2), but a list of plain values stays on one line: "position": [0.5, 0.5, 0.7]
 // reads better than one number per line.
 std::string indented(const Json& j, int depth) {
@@ -199,6 +213,11 @@ Json scene_to_json(const SceneDef& scene) {
   Json bodies = Json::array();
   for (const BodyDef& body : scene.bodies) bodies.push_back(body_to_json(body));
   j["bodies"] = std::move(bodies);
+  if (!scene.fill.empty()) {
+    Json fills = Json::array();
+    for (const FillDef& fill : scene.fill) fills.push_back(fill_to_json(fill));
+    j["fill"] = std::move(fills);
+  }
   j["output"] = Json{{"interval", scene.output.interval},
                      {"checkpoint_interval", scene.output.checkpoint_interval},
                      {"paraview", scene.output.paraview}};

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "geometry/shape_blocks.hpp"
+#include "world/fill.hpp"
 #include "mass/mass_properties.hpp"
 
 namespace tem {
@@ -24,6 +25,10 @@ Body build_body(const BodyDef& def, Model& model) {
   body.name = def.name;
   body.density = def.density;
   body.fixed = def.fixed;
+  body.start_position = def.position;
+  body.start_rotation = def.rotation;
+  body.start_velocity = def.velocity;
+  body.start_angular_velocity = def.angular_velocity;
 
   std::vector<PlacedMass> parts;
   std::map<std::string, std::vector<Real>> nonconvex;  // shape path -> how far each sticks out
@@ -77,26 +82,32 @@ Model build_model(const SceneDef& scene) {
   }
   for (const WallDef& w : scene.walls) model.walls.push_back({w.point, w.normal.normalized()});
   for (const BodyDef& def : scene.bodies) model.bodies.push_back(build_body(def, model));
+  for (const FillDef& fill : scene.fill) {
+    // One template body: its blocks are built once and shared by every copy.
+    const Body copy = build_body(fill.body, model);
+    place_fill(fill, copy, model);
+  }
   return model;
 }
 
-Real body_size(const Model& model, int body) {
+Real body_size(const Model& model, int body) { return body_size(model, model.bodies[body]); }
+
+Real body_size(const Model& model, const Body& body) {
   Real size = 0;
-  for (const BlockInstance& i : model.bodies[body].blocks)
+  for (const BlockInstance& i : body.blocks)
     size = std::max(size, i.offset.norm() + model.blocks[i.block].bounding_radius());
   return size;
 }
 
 State initial_state(const Model& model) {
   State state;
-  for (size_t i = 0; i < model.bodies.size(); ++i) {
-    const BodyDef& def = model.scene.bodies[i];
-    const Body& body = model.bodies[i];
+  state.bodies.reserve(model.bodies.size());
+  for (const Body& body : model.bodies) {
     BodyState s;
-    s.g = def.rotation;
-    s.x = def.position - def.rotation * body.origin_offset;
-    s.v = def.velocity;
-    s.omega = def.rotation.transpose() * def.angular_velocity;
+    s.g = body.start_rotation;
+    s.x = body.start_position - body.start_rotation * body.origin_offset;
+    s.v = body.start_velocity;
+    s.omega = body.start_rotation.transpose() * body.start_angular_velocity;
     state.bodies.push_back(s);
   }
   return state;

@@ -31,6 +31,13 @@ struct Body {
   // origin here): the scene's `position` places that point.
   Vec3 origin_offset = Vec3::Zero();
   bool fixed = false;
+  // How it starts (initial_state): the world position of the scene's body-frame origin, the
+  // attitude (body to world), the velocity of the centre of mass and the angular velocity, both
+  // in world axes. From the body's scene entry, or chosen by its fill.
+  Vec3 start_position = Vec3::Zero();
+  Mat3 start_rotation = Mat3::Identity();
+  Vec3 start_velocity = Vec3::Zero();
+  Vec3 start_angular_velocity = Vec3::Zero();
 };
 
 struct Wall {
@@ -41,7 +48,7 @@ struct Wall {
 struct Model {
   SceneDef scene;  // the definitions it was built from, defaults filled in
   std::vector<Block> blocks;
-  std::vector<Body> bodies;
+  std::vector<Body> bodies;           // the scene's `bodies`, then those of each `fill`
   std::vector<Wall> walls;            // the container's six inner faces, then the scene's `walls`
   std::vector<std::string> warnings;  // accepted defects, e.g. a non-convex block allowed
 };
@@ -53,6 +60,7 @@ Model build_model(const SceneDef& scene);
 // A body's size: the largest distance from its centre of mass that any of its nodes can have
 // (block offset + block bounding radius). Contact tolerances are fractions of it.
 Real body_size(const Model& model, int body);
+Real body_size(const Model& model, const Body& body);
 
 // The state at time 0: the scene's poses and velocities, centres of mass in world space.
 State initial_state(const Model& model);
