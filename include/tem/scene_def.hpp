@@ -88,6 +88,10 @@ struct ContactDef {
   // reader fills them in, so a SceneDef always says which is used.
   PatchNormals normals = PatchNormals::faces;
   PatchPoints points = PatchPoints::corners;
+  // When the contact solver (default SEMM and the overlap correction) stops: the sweeps stop once
+  // no impulse changes by more than `tolerance` of the largest, or after `max_sweeps`.
+  Real tolerance = 1e-9;
+  int max_sweeps = 500;
 };
 
 struct WallDef {

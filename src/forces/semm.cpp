@@ -377,9 +377,12 @@ SolverReport solve_separation(const std::vector<ContactPoint>& points,
                               const std::vector<BodyResponse>& bodies,
                               const std::vector<Vec3>& centres,
                               std::vector<PatchFriction> patches,
-                              std::vector<BodyResponse>& velocities) {
+                              std::vector<BodyResponse>& velocities, Real tolerance,
+                              int max_sweeps) {
   SolverSettings settings;
   settings.friction = 0;
+  settings.tolerance = tolerance;
+  settings.max_sweeps = max_sweeps;
   std::vector<PointImpulse> impulses(points.size());
   for (PatchFriction& p : patches) p.t1 = p.t2 = p.twist = 0;
   return solve_targets(points, targets, bodies, centres, settings, patches, impulses,

@@ -88,7 +88,8 @@ SolverReport solve_separation(const std::vector<ContactPoint>& points,
                               const std::vector<BodyResponse>& bodies,
                               const std::vector<Vec3>& centres,
                               std::vector<PatchFriction> patches,
-                              std::vector<BodyResponse>& velocities);
+                              std::vector<BodyResponse>& velocities, Real tolerance = 1e-9,
+                              int max_sweeps = 500);
 
 // The paper's unconstrained normal-only SEMM: K S = D, solved directly.
 SolverReport solve_semm_paper(const std::vector<ContactPoint>& points,

@@ -91,7 +91,7 @@ const KeyList kSceneKeys = {"gravity",   "time_step", "duration", "integrator", 
                             "container", "walls",     "bodies",   "fill",       "output"};
 const KeyList kContactKeys = {"model",   "friction", "restitution", "stiffness",
                               "damping", "normals",  "points",      "law",
-                              "tangential_stiffness"};
+                              "tangential_stiffness", "tolerance", "max_sweeps"};
 const KeyList kContainerKeys = {"min", "max"};
 const KeyList kWallKeys = {"point", "normal"};
 const KeyList kOutputKeys = {"interval", "checkpoint_interval", "paraview"};
@@ -245,6 +245,8 @@ class SceneReader {
         contact->law = *law;
       }
     }
+    r_.read_number(j, path, "tolerance", &contact->tolerance, Bound::positive);
+    r_.read_int(j, path, "max_sweeps", &contact->max_sweeps, 1, 1'000'000);
     // Cundall and Strack's ratio when not given.
     contact->tangential_stiffness = 2.0 / 7.0 * contact->stiffness;
     r_.read_number(j, path, "tangential_stiffness", &contact->tangential_stiffness,

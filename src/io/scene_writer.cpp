@@ -201,7 +201,9 @@ Json scene_to_json(const SceneDef& scene) {
                       {"law", scene.contact.law == PenaltyLaw::hertz ? "hertz" : "linear"},
                       {"tangential_stiffness", scene.contact.tangential_stiffness},
                       {"normals", scene.contact.normals == PatchNormals::paper ? "paper" : "faces"},
-                      {"points", scene.contact.points == PatchPoints::one ? "one" : "corners"}};
+                      {"points", scene.contact.points == PatchPoints::one ? "one" : "corners"},
+                      {"tolerance", scene.contact.tolerance},
+                      {"max_sweeps", scene.contact.max_sweeps}};
   if (scene.container) {
     j["container"] = Json{{"min", vec3(scene.container->min)}, {"max", vec3(scene.container->max)}};
   }

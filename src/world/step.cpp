@@ -68,6 +68,8 @@ void advance(const Model& model, State& state, Workspace& w) {
   w.times.integrate += seconds_since(clock);
 
   ++w.times.steps;
+  w.times.patches += static_cast<long long>(w.patches.size());
+  w.times.points += static_cast<long long>(w.forces.points.size());
   w.times.sweeps += w.forces.solver.sweeps;
   w.times.max_sweeps = std::max(w.times.max_sweeps, w.forces.solver.sweeps);
   if (!w.forces.solver.converged) ++w.times.unconverged_steps;

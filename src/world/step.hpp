@@ -23,6 +23,8 @@ struct StageTimes {
   long long sweeps = 0;
   long long unconverged_steps = 0;
   long long corrected_steps = 0;  // steps whose overlap correction moved bodies
+  long long patches = 0;          // contact patches and points, summed over the steps
+  long long points = 0;
 };
 
 struct Workspace {
