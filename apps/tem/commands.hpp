@@ -40,8 +40,8 @@ int contacts_command(const std::string& scene_file, const std::string& out_file)
 // `tem run SCENE --out DIR [--contacts] [--resume] [--hash]`: simulates and writes bodies.csv,
 // energy.csv, scene.json (and contacts.csv, checkpoint.bin) into DIR; with --resume, continues
 // from DIR/checkpoint.bin; with --hash, prints as its last line `hash: <hex>` of the final
-// state's exact bits.
+// state's exact bits. `threads`: 0 one per core, < 0 one unless OMP_NUM_THREADS says otherwise.
 int run_command(const std::string& scene_file, const std::string& out_dir, bool contacts,
-                bool resume, bool hash);
+                bool resume, bool hash, int threads = -1);
 
 }  // namespace tem::cli

@@ -39,6 +39,11 @@ int run(int argc, char** argv) {
   bool with_resume = false;
   run->add_flag("--resume", with_resume,
                 "Continue the run in --out from its last checkpoint (bit-identical results)");
+  int threads = -1;
+  run->add_option("--threads", threads,
+                  "Threads for the narrow phase (0: one per core; default 1, or OMP_NUM_THREADS); "
+                  "results are bit-identical with any number")
+      ->check(CLI::NonNegativeNumber);
   bool with_hash = false;
   run->add_flag("--hash", with_hash, "Print 'hash: <hex>' of the final state as the last line");
 
@@ -65,7 +70,7 @@ int run(int argc, char** argv) {
   if (*info) return info_command(scene_file, json);
   if (*check) return check_command(scene_file);
   if (*contacts) return contacts_command(scene_file, out_file);
-  if (*run) return run_command(scene_file, out_dir, with_contacts, with_resume, with_hash);
+  if (*run) return run_command(scene_file, out_dir, with_contacts, with_resume, with_hash, threads);
   return kExitUsage;  // unreachable: require_subcommand(1)
 }
 

@@ -4,7 +4,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
+#include <thread>
 
 #include "commands.hpp"
 #include "contact/initial_overlap.hpp"
@@ -13,6 +15,7 @@
 #include "io/run_output.hpp"
 #include "progress.hpp"
 #include "stop_signal.hpp"
+#include "world/parallel.hpp"
 #include "world/state_hash.hpp"
 #include "world/step.hpp"
 
@@ -55,7 +58,12 @@ void warn_about_time_step(const std::string& scene_file, const Model& model) {
 }  // namespace
 
 int run_command(const std::string& scene_file, const std::string& out_dir, bool contacts,
-                bool resume, bool hash) {
+                bool resume, bool hash, int threads) {
+  // One thread unless asked: several `tem run` side by side (a parameter sweep, ctest -j) each
+  // spinning up a thread per core would fight over the cores.
+  if (threads < 0 && !std::getenv("OMP_NUM_THREADS")) threads = 1;
+  if (threads == 0) threads = static_cast<int>(std::thread::hardware_concurrency());
+  set_threads(threads);
   const std::optional<Model> loaded = load_model(scene_file);
   if (!loaded) return kExitBadInput;
   const Model& model = *loaded;
@@ -84,6 +92,10 @@ int run_command(const std::string& scene_file, const std::string& out_dir, bool 
         throw std::runtime_error(checkpoint_file + " is at step " +
                                  std::to_string(resumed->state.step) + ", beyond the scene's " +
                                  std::to_string(total_steps) + " steps");
+      if ((resumed->sizes.contacts >= 0) != contacts)
+        throw std::runtime_error(std::string("the run in ") + out_dir + " was started " +
+                                 (contacts ? "without" : "with") +
+                                 " --contacts; resume it the same way");
       state = resumed->state;
       restore_memory(*resumed, workspace.forces);
       std::cerr << "tem run: resuming at step " << state.step << " (t = " << state.time

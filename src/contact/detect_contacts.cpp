@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "world/parallel.hpp"
+
 namespace tem {
 
 PatchVariant patch_variant(const SceneDef& scene) {
@@ -21,34 +23,54 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
   patches.clear();
   const std::vector<BlockProxy>& proxies = w.broad_phase.proxies();
   const std::vector<BlockPose>& poses = w.broad_phase.poses();
+  const std::vector<BlockPair>& block_pairs = w.broad_phase.block_pairs();
+  const std::vector<WallPair>& wall_pairs = w.broad_phase.wall_pairs();
   auto block_of = [&](int proxy) -> const Block& {
     const BlockProxy& p = proxies[proxy];
     return model.blocks[model.bodies[p.body].blocks[p.instance].block];
   };
 
-  // 2-3. Narrow phase and patches, pair by pair.
-  for (const BlockPair& pair : w.broad_phase.block_pairs()) {
-    const Block &a = block_of(pair.a), &b = block_of(pair.b);
-    if (!block_pair_features(a, poses[pair.a], b, poses[pair.b], w.narrow, w.pair)) continue;
-    const size_t first = patches.size();
-    pair_patches(a, poses[pair.a], b, poses[pair.b], w.pair, variant, w.patch, patches);
-    for (size_t k = first; k < patches.size(); ++k) {
-      patches[k].body_a = proxies[pair.a].body;
-      patches[k].body_b = proxies[pair.b].body;
+  // 2-3. Narrow phase and patches, pair by pair: block pairs, then block-wall pairs, as one
+  // list cut into runs of kRun pairs that threads take in turn.
+  constexpr long long kRun = 32;
+  const long long n_block = static_cast<long long>(block_pairs.size());
+  const long long n_all = n_block + static_cast<long long>(wall_pairs.size());
+  const long long runs = (n_all + kRun - 1) / kRun;
+  w.threads.resize(static_cast<size_t>(max_threads()));
+  if (w.chunks.size() < static_cast<size_t>(runs)) w.chunks.resize(static_cast<size_t>(runs));
+
+#pragma omp parallel for schedule(dynamic, 1)
+  for (long long run = 0; run < runs; ++run) {
+    PairScratch& s = w.threads[static_cast<size_t>(thread_index())];
+    std::vector<ContactPatch>& out = w.chunks[static_cast<size_t>(run)];
+    out.clear();
+    for (long long item = run * kRun; item < std::min(n_all, (run + 1) * kRun); ++item) {
+      const size_t first = out.size();
+      if (item < n_block) {
+        const BlockPair& pair = block_pairs[static_cast<size_t>(item)];
+        const Block &a = block_of(pair.a), &b = block_of(pair.b);
+        if (!block_pair_features(a, poses[pair.a], b, poses[pair.b], s.narrow, s.pair)) continue;
+        pair_patches(a, poses[pair.a], b, poses[pair.b], s.pair, variant, s.patch, out);
+        for (size_t k = first; k < out.size(); ++k) {
+          out[k].body_a = proxies[pair.a].body;
+          out[k].body_b = proxies[pair.b].body;
+        }
+      } else {
+        const WallPair& pair = wall_pairs[static_cast<size_t>(item - n_block)];
+        const Wall& wall = model.walls[pair.wall];
+        const Block& block = block_of(pair.proxy);
+        block_wall_features(block, poses[pair.proxy], wall.point, wall.normal, s.wall);
+        wall_patches(block, poses[pair.proxy], wall.point, wall.normal, s.wall, variant, s.patch,
+                     out);
+        for (size_t k = first; k < out.size(); ++k) {
+          out[k].body_a = proxies[pair.proxy].body;
+          out[k].wall = pair.wall;
+        }
+      }
     }
   }
-  for (const WallPair& pair : w.broad_phase.wall_pairs()) {
-    const Wall& wall = model.walls[pair.wall];
-    const Block& block = block_of(pair.proxy);
-    block_wall_features(block, poses[pair.proxy], wall.point, wall.normal, w.wall);
-    const size_t first = patches.size();
-    wall_patches(block, poses[pair.proxy], wall.point, wall.normal, w.wall, variant, w.patch,
-                 patches);
-    for (size_t k = first; k < patches.size(); ++k) {
-      patches[k].body_a = proxies[pair.proxy].body;
-      patches[k].wall = pair.wall;
-    }
-  }
+  for (long long run = 0; run < runs; ++run)
+    for (ContactPatch& p : w.chunks[static_cast<size_t>(run)]) patches.push_back(std::move(p));
 
   // One patch per place: blocks of one body touching the other body at one place merge.
   std::stable_sort(patches.begin(), patches.end(),

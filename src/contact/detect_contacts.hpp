@@ -15,17 +15,25 @@ namespace tem {
 // The scene's contact.normals: the paper's node/edge-normal rule or the face-based default.
 PatchVariant patch_variant(const SceneDef& scene);
 
-// Everything contact detection reuses from one step to the next.
-struct ContactWorkspace {
-  BroadPhase broad_phase;
+// What one thread needs to test a pair: scratch of the narrow phase and of the patches.
+struct PairScratch {
   NarrowPhaseScratch narrow;
   PairFeatures pair;
   WallFeatures wall;
   PatchScratch patch;
 };
 
+// Everything contact detection reuses from one step to the next.
+struct ContactWorkspace {
+  BroadPhase broad_phase;
+  std::vector<PairScratch> threads;                // one per OpenMP thread
+  std::vector<std::vector<ContactPatch>> chunks;  // the patches of each run of pairs
+};
+
 // Narrow phase and patches for the pairs of the workspace's last broad-phase update. Patches
-// ordered by body pair (walls after bodies, by wall index), deterministic.
+// ordered by body pair (walls after bodies, by wall index), deterministic: the pairs are shared
+// among OpenMP threads in runs, each run's patches kept apart and joined in pair order, so the
+// result is the same, bit for bit, with any number of threads.
 void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& workspace,
                   std::vector<ContactPatch>& patches);
 

@@ -162,7 +162,8 @@ class SceneReader {
     const Json* fill = Reader::get(root, "fill");
     if (fill) read_fills(*fill, "fill", &scene->fill);
     if (const Json* j = fill ? Reader::get(root, "bodies") : r_.need(root, "", "bodies"))
-      read_bodies(*j, "bodies", &scene->bodies, /*may_be_empty=*/fill != nullptr);
+      read_bodies(*j, "bodies", &scene->bodies,
+                  /*may_be_empty=*/fill && fill->is_array() && !fill->empty());
     if (const Json* j = Reader::get(root, "output")) read_output(*j, "output", &scene->output);
   }
 
