@@ -54,12 +54,33 @@ constexpr int kMaxBlock = 8;
 using BlockMatrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxBlock, kMaxBlock>;
 using BlockVector = Eigen::Matrix<Real, Eigen::Dynamic, 1, 0, kMaxBlock, 1>;
 
+using BlockFactor = Eigen::LDLT<BlockMatrix>;
+
+// The regularisation of a patch's block: redundant points make K singular; 1e-13 of its
+// largest diagonal entry picks one of the equivalent answers.
+Real block_regularisation(const BlockMatrix& k) {
+  return 1e-13 * std::max<Real>(k.diagonal().maxCoeff(), 1e-300);
+}
+
 // min 1/2 x.K x + q.x over x >= 0 (K symmetric positive semi-definite), by the active-set
-// method of Lawson and Hanson, from the feasible start x. Redundant points make K singular; a
-// regularisation of 1e-13 of its diagonal picks one of the equivalent answers.
-void solve_block(const BlockMatrix& k, const BlockVector& q, BlockVector& x) {
+// method of Lawson and Hanson, from the feasible start x. `all_free` is the factorisation of
+// the regularised K, made once per step: in resting contact every point pushes, and then the
+// answer is that of the whole block, the same numbers the active-set iterations would end with,
+// found without factorising at every sweep.
+void solve_block(const BlockMatrix& k, const BlockFactor& all_free, bool well_conditioned,
+                 const BlockVector& q, BlockVector& x) {
   const int m = static_cast<int>(q.size());
-  const Real eps = 1e-13 * std::max<Real>(k.diagonal().maxCoeff(), 1e-300);
+  // Only where K is far from singular: with redundant points (four corners of a face pushing
+  // on one plane) the regularised whole block amplifies rounding into large, opposed impulses;
+  // the active set keeps the ones it has.
+  if (well_conditioned) {
+    const BlockVector z = all_free.solve(-q);
+    if ((z.array() > 0).all()) {
+      x = z;
+      return;
+    }
+  }
+  const Real eps = block_regularisation(k);
   const Real tolerance = 1e-12 * std::max<Real>(q.cwiseAbs().maxCoeff(), 1e-300);
   std::array<bool, kMaxBlock> free{};
   for (int i = 0; i < m; ++i) free[i] = x(i) > 0;
@@ -132,6 +153,8 @@ struct NormalRow {
 struct FrictionRow {
   Side a, b;
   BlockMatrix k_normal;  // n_i.K n_j of the patch's points
+  BlockFactor k_normal_factor;  // of k_normal + its regularisation (solve_block)
+  bool k_normal_well_conditioned = false;
   Mat2 k_slip;       // tangential block of K at the centre
   Real k_twist = 0;  // twist block
   Vec3 start_slip;   // (t1, t2, spin) at the start of the step
@@ -185,7 +208,8 @@ SolverReport sweep(std::vector<NormalRow>& rows, std::vector<FrictionRow>& frict
       }
       q -= friction[k].k_normal * now;  // the velocities without this block's impulses
       BlockVector after = now;
-      solve_block(friction[k].k_normal, q, after);
+      solve_block(friction[k].k_normal, friction[k].k_normal_factor,
+                  friction[k].k_normal_well_conditioned, q, after);
       for (int r = 0; r < m; ++r) {
         NormalRow& row = rows[p.first + r];
         const Real d = after(r) - now(r);
@@ -323,6 +347,11 @@ SolverReport solve_targets(const std::vector<ContactPoint>& points,
         f.k_normal(i, j) = v;
       }
     }
+    BlockMatrix regularised = f.k_normal;
+    regularised.diagonal().array() += block_regularisation(f.k_normal);
+    f.k_normal_factor.compute(regularised);
+    const auto d = f.k_normal_factor.vectorD();
+    f.k_normal_well_conditioned = d.minCoeff() > 1e-6 * d.maxCoeff();
   }
   // Warm start: apply the initial guesses, normal and friction.
   bool warm = false;
