@@ -24,6 +24,7 @@ void body_responses(const Model& model, const State& state, Real dt,
                     std::vector<BodyResponse>& out) {
   const Vec3& gravity = model.scene.gravity;
   out.assign(model.bodies.size(), BodyResponse{});
+#pragma omp parallel for schedule(static) if (model.bodies.size() > 256)
   for (size_t i = 0; i < model.bodies.size(); ++i) {
     const Body& body = model.bodies[i];
     if (body.fixed) continue;  // does not move: no response, no velocity

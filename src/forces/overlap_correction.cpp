@@ -31,6 +31,13 @@ CorrectionReport correct_overlap(const Model& model, const ContactForces& f, Rea
     }
   }
   if (!any) return report;
+  // Nothing dissipated (bodies at rest: the contacts only cancelled what gravity added), nothing
+  // to fund a lift with: the move would be scaled to nothing. Skipping the solve then is what
+  // makes resting piles cheap; it forgoes only moves that lift nothing (purely sideways), which
+  // wait for the next step that dissipates.
+  const Energies after = system_energies(model, state);
+  const Real dissipated = energy_before - after.total();
+  if (!(dissipated > 1e-12 * (std::abs(after.kinetic) + std::abs(after.potential)))) return report;
 
   std::vector<BodyResponse> still = f.responses;
   for (BodyResponse& r : still) r.velocity = r.angular_velocity = Vec3::Zero();
@@ -42,7 +49,6 @@ CorrectionReport correct_overlap(const Model& model, const ContactForces& f, Rea
   Real lift = 0;
   for (size_t b = 0; b < model.bodies.size(); ++b)
     lift -= model.bodies[b].inertia.mass * model.scene.gravity.dot(dt * moved[b].velocity);
-  const Real dissipated = energy_before - system_energies(model, state).total();
   report.scale = lift > 0 ? std::clamp<Real>(dissipated / lift, 0, 1) : 1;
   if (report.scale == 0) return report;
   for (size_t b = 0; b < model.bodies.size(); ++b) {

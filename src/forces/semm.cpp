@@ -305,6 +305,7 @@ SolverReport solve_targets(const std::vector<ContactPoint>& points,
   if (n == 0) return SolverReport{};
 
   std::vector<NormalRow> rows(n);
+#pragma omp parallel for schedule(static) if (n > 256)
   for (size_t i = 0; i < n; ++i) {
     const ContactPoint& c = points[i];
     NormalRow& row = rows[i];
@@ -316,6 +317,8 @@ SolverReport solve_targets(const std::vector<ContactPoint>& points,
     row.target = targets[i];
   }
   std::vector<FrictionRow> friction(patches.size());
+  // Each patch's blocks are its own: shared among threads, the same numbers with any count.
+#pragma omp parallel for schedule(static) if (patches.size() > 64)
   for (size_t k = 0; k < patches.size(); ++k) {
     PatchFriction& p = patches[k];
     FrictionRow& f = friction[k];

@@ -50,6 +50,7 @@ void advance(const Model& model, State& state, Workspace& w) {
   const bool correct = scene.contact.model == ContactModel::semm &&
                        scene.integrator == IntegratorKind::default_ && !w.patches.empty();
   const Real energy_before = correct ? system_energies(model, state).total() : 0;
+#pragma omp parallel for schedule(static) if (model.bodies.size() > 256)
   for (size_t i = 0; i < model.bodies.size(); ++i) {
     if (model.bodies[i].fixed) continue;
     integrate(scene.integrator, model.bodies[i].inertia, scene.gravity, w.forces.force[i],
