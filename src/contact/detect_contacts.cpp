@@ -39,8 +39,7 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
   w.threads.resize(static_cast<size_t>(max_threads()));
   if (w.chunks.size() < static_cast<size_t>(runs)) w.chunks.resize(static_cast<size_t>(runs));
 
-#pragma omp parallel for schedule(dynamic, 1) if (runs > 1)
-  for (long long run = 0; run < runs; ++run) {
+  parallel_for(runs, 1, [&](long long run) {
     PairScratch& s = w.threads[static_cast<size_t>(thread_index())];
     std::vector<ContactPatch>& out = w.chunks[static_cast<size_t>(run)];
     out.clear();
@@ -68,7 +67,7 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
         }
       }
     }
-  }
+  }, /*dynamic=*/true);
   for (long long run = 0; run < runs; ++run)
     for (ContactPatch& p : w.chunks[static_cast<size_t>(run)]) patches.push_back(std::move(p));
 

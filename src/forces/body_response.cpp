@@ -1,5 +1,7 @@
 #include "forces/body_response.hpp"
 
+#include "world/parallel.hpp"
+
 #include "dynamics/integrator.hpp"
 
 namespace tem {
@@ -24,10 +26,9 @@ void body_responses(const Model& model, const State& state, Real dt,
                     std::vector<BodyResponse>& out) {
   const Vec3& gravity = model.scene.gravity;
   out.assign(model.bodies.size(), BodyResponse{});
-#pragma omp parallel for schedule(static) if (model.bodies.size() > 256)
-  for (size_t i = 0; i < model.bodies.size(); ++i) {
+  parallel_for(static_cast<long long>(model.bodies.size()), 256, [&](long long i) {
     const Body& body = model.bodies[i];
-    if (body.fixed) continue;  // does not move: no response, no velocity
+    if (body.fixed) return;  // does not move: no response, no velocity
     const BodyState& s = state.bodies[i];
     const RigidInertia& inertia = body.inertia;
     BodyResponse& r = out[i];
@@ -46,7 +47,7 @@ void body_responses(const Model& model, const State& state, Real dt,
       r.angular = s.g * inertia.inertia_inv * s.g.transpose();
       r.angular_velocity = s.g * s.omega;
     }
-  }
+  });
 }
 
 }  // namespace tem

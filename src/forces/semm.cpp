@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 
+#include "world/parallel.hpp"
+
 namespace tem {
 namespace {
 
@@ -305,8 +307,7 @@ SolverReport solve_targets(const std::vector<ContactPoint>& points,
   if (n == 0) return SolverReport{};
 
   std::vector<NormalRow> rows(n);
-#pragma omp parallel for schedule(static) if (n > 256)
-  for (size_t i = 0; i < n; ++i) {
+  parallel_for(static_cast<long long>(n), 256, [&](long long i) {
     const ContactPoint& c = points[i];
     NormalRow& row = rows[i];
     row.a = side_of(bodies, centres, c.body_a, c.point);
@@ -315,11 +316,10 @@ SolverReport solve_targets(const std::vector<ContactPoint>& points,
     row.k = c.normal.dot(row.b.response(c.normal, Vec3::Zero()).first +
                          row.a.response(c.normal, Vec3::Zero()).first);
     row.target = targets[i];
-  }
+  });
   std::vector<FrictionRow> friction(patches.size());
   // Each patch's blocks are its own: shared among threads, the same numbers with any count.
-#pragma omp parallel for schedule(static) if (patches.size() > 64)
-  for (size_t k = 0; k < patches.size(); ++k) {
+  parallel_for(static_cast<long long>(patches.size()), 64, [&](long long k) {
     PatchFriction& p = patches[k];
     FrictionRow& f = friction[k];
     f.a = side_of(bodies, centres, p.body_a, p.centre);
@@ -355,7 +355,7 @@ SolverReport solve_targets(const std::vector<ContactPoint>& points,
     f.k_normal_factor.compute(regularised);
     const auto d = f.k_normal_factor.vectorD();
     f.k_normal_well_conditioned = d.minCoeff() > 1e-6 * d.maxCoeff();
-  }
+  });
   // Warm start: apply the initial guesses, normal and friction.
   bool warm = false;
   for (size_t i = 0; i < n; ++i) {

@@ -5,6 +5,7 @@
 
 #include "dynamics/integrator.hpp"
 #include "forces/overlap_correction.hpp"
+#include "world/parallel.hpp"
 
 namespace tem {
 namespace {
@@ -50,12 +51,11 @@ void advance(const Model& model, State& state, Workspace& w) {
   const bool correct = scene.contact.model == ContactModel::semm &&
                        scene.integrator == IntegratorKind::default_ && !w.patches.empty();
   const Real energy_before = correct ? system_energies(model, state).total() : 0;
-#pragma omp parallel for schedule(static) if (model.bodies.size() > 256)
-  for (size_t i = 0; i < model.bodies.size(); ++i) {
-    if (model.bodies[i].fixed) continue;
+  parallel_for(static_cast<long long>(model.bodies.size()), 256, [&](long long i) {
+    if (model.bodies[i].fixed) return;
     integrate(scene.integrator, model.bodies[i].inertia, scene.gravity, w.forces.force[i],
               w.forces.torque[i], scene.time_step, state.bodies[i]);
-  }
+  });
   // 6. Correction of existing overlap, within the energy the contacts dissipated (default).
   if (correct && correct_overlap(model, w.forces, energy_before, state).applied)
     ++w.times.corrected_steps;
