@@ -37,13 +37,11 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
   const long long n_all = n_block + static_cast<long long>(wall_pairs.size());
   const long long runs = (n_all + kRun - 1) / kRun;
   w.threads.resize(static_cast<size_t>(max_threads()));
-  if (w.chunks.size() < static_cast<size_t>(runs)) w.chunks.resize(static_cast<size_t>(runs));
 
-  parallel_for(runs, 1, [&](long long run) {
-    PairScratch& s = w.threads[static_cast<size_t>(thread_index())];
-    std::vector<ContactPatch>& out = w.chunks[static_cast<size_t>(run)];
-    out.clear();
-    for (long long item = run * kRun; item < std::min(n_all, (run + 1) * kRun); ++item) {
+  // Tests items [begin, end) in order, appending their patches to `out`.
+  auto test_items = [&](long long begin, long long end, PairScratch& s,
+                        std::vector<ContactPatch>& out) {
+    for (long long item = begin; item < end; ++item) {
       const size_t first = out.size();
       if (item < n_block) {
         const BlockPair& pair = block_pairs[static_cast<size_t>(item)];
@@ -67,9 +65,21 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
         }
       }
     }
-  }, /*dynamic=*/true);
-  for (long long run = 0; run < runs; ++run)
-    for (ContactPatch& p : w.chunks[static_cast<size_t>(run)]) patches.push_back(std::move(p));
+  };
+  if (w.threads.size() == 1 || runs <= 1) {
+    // One thread: straight into the result, in the same order the runs would give.
+    test_items(0, n_all, w.threads[0], patches);
+  } else {
+    if (w.chunks.size() < static_cast<size_t>(runs)) w.chunks.resize(static_cast<size_t>(runs));
+    parallel_for(runs, 1, [&](long long run) {
+      std::vector<ContactPatch>& out = w.chunks[static_cast<size_t>(run)];
+      out.clear();
+      test_items(run * kRun, std::min(n_all, (run + 1) * kRun),
+                 w.threads[static_cast<size_t>(thread_index())], out);
+    }, /*dynamic=*/true);
+    for (long long run = 0; run < runs; ++run)
+      for (ContactPatch& p : w.chunks[static_cast<size_t>(run)]) patches.push_back(std::move(p));
+  }
 
   // One patch per place: blocks of one body touching the other body at one place merge.
   std::stable_sort(patches.begin(), patches.end(),
