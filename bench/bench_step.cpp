@@ -1,5 +1,6 @@
 // Whole simulation steps on piles of N coins (bench_scenes.hpp: every coin touching its
-// neighbours, as in a settled pile), one and two threads: time per step, body-steps per second,
+// neighbours, as in a settled pile), one and two threads, sweeps in patch order or by colours
+// (contact.sweep_order): time per step, body-steps per second,
 // time per contact patch, and the split among the stages of the step. The solver stops as in
 // scenes/bench (tolerance 1e-3, at most 20 sweeps), dt 1e-4.
 #include <benchmark/benchmark.h>
@@ -17,6 +18,7 @@ void BM_StepPile(benchmark::State& st) {
   model.scene.contact.friction = 0.3;
   model.scene.contact.tolerance = 1e-3;
   model.scene.contact.max_sweeps = 20;
+  model.scene.contact.colour_sweeps = st.range(2) != 0;
   set_threads(static_cast<int>(st.range(1)));
   State state = initial_state(model);
   Workspace workspace;
@@ -42,8 +44,8 @@ void BM_StepPile(benchmark::State& st) {
       std::max<double>(1, static_cast<double>(t.patches));
 }
 BENCHMARK(BM_StepPile)
-    ->ArgsProduct({{100, 1000, 4000, 10000}, {1, 2}})
-    ->ArgNames({"coins", "threads"})
+    ->ArgsProduct({{100, 1000, 4000, 10000}, {1, 2}, {0, 1}})
+    ->ArgNames({"coins", "threads", "colours"})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(2.0);
 

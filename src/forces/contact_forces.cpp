@@ -100,6 +100,7 @@ void compute_contact_forces(const Model& model, const State& state,
     settings.restitution = scene.contact.restitution;
     settings.tolerance = scene.contact.tolerance;
     settings.max_sweeps = scene.contact.max_sweeps;
+    settings.colour_sweeps = scene.contact.colour_sweeps;
     // Slower than what gravity adds in two steps is resting contact, not an impact.
     settings.restitution_threshold = 2 * scene.gravity.norm() * dt;
     if (f.match_radius.size() != n_bodies) match_radii(model, f.match_radius);

@@ -42,8 +42,11 @@ CorrectionReport correct_overlap(const Model& model, const ContactForces& f, Rea
   std::vector<BodyResponse> still = f.responses;
   for (BodyResponse& r : still) r.velocity = r.angular_velocity = Vec3::Zero();
   std::vector<BodyResponse> moved;
-  solve_separation(f.points, targets, still, f.centres, f.friction, moved,
-                   model.scene.contact.tolerance, model.scene.contact.max_sweeps);
+  SolverSettings stopping;
+  stopping.tolerance = model.scene.contact.tolerance;
+  stopping.max_sweeps = model.scene.contact.max_sweeps;
+  stopping.colour_sweeps = model.scene.contact.colour_sweeps;
+  solve_separation(f.points, targets, still, f.centres, f.friction, moved, stopping);
 
   // The potential energy the move costs, against what the step dissipated.
   Real lift = 0;

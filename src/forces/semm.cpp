@@ -3,6 +3,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 
 #include "world/parallel.hpp"
@@ -190,74 +192,155 @@ Vec friction_block(const Vec& now, const Vec& velocity, const Vec& start, const 
   return f;
 }
 
+// The order in which Gauss-Seidel visits the patches: by colour, so that the patches of one
+// colour share no moving body. Their updates then read and write disjoint bodies, so within a
+// colour they can go in any order, or on several threads, and give the same bits: the answer
+// depends on the colouring, never on the thread count. Greedy, in patch order: a patch takes the
+// lowest colour neither of its bodies has yet; the few that find none of 64 go last, one by one.
+// The solver works on the patches and points laid out in this order (solve_targets), so that
+// each colour's rows lie together in memory.
+constexpr int kColours = 64;
+
+struct Colouring {
+  std::vector<int> order;  // patch indices, colour by colour, in patch order within a colour
+  std::vector<int> start;  // colour c is order[start[c], start[c + 1]); the last one is serial
+};
+
+Colouring colour_patches(const std::vector<PatchFriction>& patches,
+                         const std::vector<BodyResponse>& bodies) {
+  std::vector<std::uint64_t> used(bodies.size(), 0);
+  auto moving = [&](int b) { return b >= 0 && bodies[b].inverse_mass > 0 ? b : -1; };
+  std::vector<int> colour(patches.size());
+  std::array<int, kColours + 1> count{};
+  for (size_t k = 0; k < patches.size(); ++k) {
+    const int a = moving(patches[k].body_a), b = moving(patches[k].body_b);
+    const std::uint64_t taken = (a >= 0 ? used[a] : 0) | (b >= 0 ? used[b] : 0);
+    const int c = ~taken == 0 ? kColours : std::countr_zero(~taken);
+    if (c < kColours) {
+      if (a >= 0) used[a] |= std::uint64_t{1} << c;
+      if (b >= 0) used[b] |= std::uint64_t{1} << c;
+    }
+    colour[k] = c;
+    ++count[c];
+  }
+  Colouring out;
+  out.start.assign(kColours + 2, 0);
+  for (int c = 0; c <= kColours; ++c) out.start[c + 1] = out.start[c] + count[c];
+  out.order.resize(patches.size());
+  std::array<int, kColours + 1> next{};
+  for (int c = 0; c <= kColours; ++c) next[c] = out.start[c];
+  for (size_t k = 0; k < patches.size(); ++k) out.order[next[colour[k]]++] = static_cast<int>(k);
+  return out;
+}
+
+// The largest impulse change and the largest impulse of a sweep, kept per thread (the maximum
+// does not depend on the order it is taken in).
+struct SweepSize {
+  Real change = 0, largest = 0;
+  void add(Real c, Real l) {
+    change = std::max(change, c);
+    largest = std::max(largest, l);
+  }
+};
+
+// One patch's normal impulses, solved together (non-negative, exact for the block).
+void normal_update(int k, std::vector<NormalRow>& rows, std::vector<FrictionRow>& friction,
+                   const std::vector<PatchFriction>& patches,
+                   std::vector<PointImpulse>& impulses, SweepSize& size) {
+  const PatchFriction& p = patches[k];
+  const int m = p.last - p.first;
+  BlockVector now(m), q(m);
+  for (int r = 0; r < m; ++r) {
+    const NormalRow& row = rows[p.first + r];
+    now(r) = impulses[p.first + r].normal;
+    q(r) = row.normal.dot(row.b.point_velocity() - row.a.point_velocity()) - row.target;
+  }
+  q -= friction[k].k_normal * now;  // the velocities without this block's impulses
+  BlockVector after = now;
+  solve_block(friction[k].k_normal, friction[k].k_normal_factor,
+              friction[k].k_normal_well_conditioned, q, after);
+  for (int r = 0; r < m; ++r) {
+    NormalRow& row = rows[p.first + r];
+    const Real d = after(r) - now(r);
+    impulses[p.first + r].normal = after(r);
+    row.b.apply(d * row.normal, Vec3::Zero());
+    row.a.apply(-d * row.normal, Vec3::Zero());
+    size.add(std::abs(d), after(r));
+  }
+}
+
+// One patch's friction: tangential, then twist, each within its Coulomb limit.
+void friction_update(int k, std::vector<FrictionRow>& friction,
+                     std::vector<PatchFriction>& patches, const std::vector<ContactPoint>& points,
+                     const std::vector<PointImpulse>& impulses, Real mu, SweepSize& size) {
+  PatchFriction& p = patches[k];
+  FrictionRow& f = friction[k];
+  Real total = 0, reach = 0;
+  for (int i = p.first; i < p.last; ++i) {
+    total += impulses[i].normal;
+    reach += impulses[i].normal * (points[i].point - p.centre).norm();
+  }
+  const Vec3 before(p.t1, p.t2, p.twist);
+  Vec3 u = slip(f, p);
+  const Vec2 t = friction_block<Vec2, Mat2>(Vec2(p.t1, p.t2), u.head<2>(),
+                                            f.start_slip.head<2>(), f.k_slip, mu * total);
+  apply_friction(f, p, Vec3(t.x() - p.t1, t.y() - p.t2, 0));
+  p.t1 = t.x();
+  p.t2 = t.y();
+  if (f.k_twist > 0) {
+    using One = Eigen::Matrix<Real, 1, 1>;
+    u = slip(f, p);
+    const One twist = friction_block<One, One>(One(p.twist), One(u.z()), One(f.start_slip.z()),
+                                               One(f.k_twist), mu * reach);
+    apply_friction(f, p, Vec3(0, 0, twist(0) - p.twist));
+    p.twist = twist(0);
+  }
+  const Vec3 after(p.t1, p.t2, p.twist);
+  // Twist is an impulse times a length: compare it on the patch's own scale.
+  const Real scale = reach > 0 && total > 0 ? total / reach : 0;
+  size.add((after - before).head<2>().norm() + scale * std::abs(after.z() - before.z()),
+           after.head<2>().norm());
+}
+
+// Runs `update(k, size)` on every patch, colour after colour (the patches laid out by colour:
+// colour c is [start[c], start[c + 1])); a colour's patches are shared among the threads when
+// there are enough of them to be worth a parallel region.
+template <class Update>
+void by_colour(const std::vector<int>& start, std::vector<SweepSize>& sizes, Update&& update) {
+  const int n_colours = static_cast<int>(start.size()) - 1;
+  for (int c = 0; c < n_colours; ++c) {
+    const int first = start[c], count = start[c + 1] - first;
+    if (c == n_colours - 1) {  // patches that found no colour: one by one
+      for (int k = first; k < first + count; ++k) update(k, sizes[0]);
+      continue;
+    }
+    parallel_for(count, 64, [&](long long i) {
+      update(first + static_cast<int>(i), sizes[thread_index()]);
+    });
+  }
+}
+
 SolverReport sweep(std::vector<NormalRow>& rows, std::vector<FrictionRow>& friction,
                    std::vector<PatchFriction>& patches, const std::vector<ContactPoint>& points,
-                   const SolverSettings& settings, std::vector<PointImpulse>& impulses) {
+                   const std::vector<int>& colours, const SolverSettings& settings,
+                   std::vector<PointImpulse>& impulses) {
   SolverReport report;
   const Real mu = settings.friction;
+  std::vector<SweepSize> sizes(static_cast<size_t>(max_threads()));
   for (report.sweeps = 1; report.sweeps <= settings.max_sweeps; ++report.sweeps) {
-    Real largest_change = 0, largest = 0;
-    // Patch by patch: its normal impulses together (non-negative, exact for the block), then
-    // its friction, tangential and twist, each within its Coulomb limit.
-    for (size_t k = 0; k < patches.size(); ++k) {
-      const PatchFriction& p = patches[k];
-      const int m = p.last - p.first;
-      BlockVector now(m), q(m);
-      for (int r = 0; r < m; ++r) {
-        const NormalRow& row = rows[p.first + r];
-        now(r) = impulses[p.first + r].normal;
-        q(r) = row.normal.dot(row.b.point_velocity() - row.a.point_velocity()) - row.target;
-      }
-      q -= friction[k].k_normal * now;  // the velocities without this block's impulses
-      BlockVector after = now;
-      solve_block(friction[k].k_normal, friction[k].k_normal_factor,
-                  friction[k].k_normal_well_conditioned, q, after);
-      for (int r = 0; r < m; ++r) {
-        NormalRow& row = rows[p.first + r];
-        const Real d = after(r) - now(r);
-        impulses[p.first + r].normal = after(r);
-        row.b.apply(d * row.normal, Vec3::Zero());
-        row.a.apply(-d * row.normal, Vec3::Zero());
-        largest_change = std::max(largest_change, std::abs(d));
-        largest = std::max(largest, after(r));
-      }
-    }
-    // Friction, patch by patch: tangential, then twist, each within its Coulomb limit.
+    std::fill(sizes.begin(), sizes.end(), SweepSize{});
+    // Every patch's normal impulses, then every patch's friction.
+    by_colour(colours, sizes, [&](int k, SweepSize& size) {
+      normal_update(k, rows, friction, patches, impulses, size);
+    });
     if (mu > 0) {
-      for (size_t k = 0; k < patches.size(); ++k) {
-        PatchFriction& p = patches[k];
-        FrictionRow& f = friction[k];
-        Real total = 0, reach = 0;
-        for (int i = p.first; i < p.last; ++i) {
-          total += impulses[i].normal;
-          reach += impulses[i].normal * (points[i].point - p.centre).norm();
-        }
-        const Vec3 before(p.t1, p.t2, p.twist);
-        Vec3 u = slip(f, p);
-        const Vec2 t = friction_block<Vec2, Mat2>(Vec2(p.t1, p.t2), u.head<2>(),
-                                                  f.start_slip.head<2>(), f.k_slip, mu * total);
-        apply_friction(f, p, Vec3(t.x() - p.t1, t.y() - p.t2, 0));
-        p.t1 = t.x();
-        p.t2 = t.y();
-        if (f.k_twist > 0) {
-          u = slip(f, p);
-          const Eigen::Matrix<Real, 1, 1> twist = friction_block<Eigen::Matrix<Real, 1, 1>,
-                                                                 Eigen::Matrix<Real, 1, 1>>(
-              Eigen::Matrix<Real, 1, 1>(p.twist), Eigen::Matrix<Real, 1, 1>(u.z()),
-              Eigen::Matrix<Real, 1, 1>(f.start_slip.z()),
-              Eigen::Matrix<Real, 1, 1>(f.k_twist), mu * reach);
-          apply_friction(f, p, Vec3(0, 0, twist(0) - p.twist));
-          p.twist = twist(0);
-        }
-        const Vec3 after(p.t1, p.t2, p.twist);
-        // Twist is an impulse times a length: compare it on the patch's own scale.
-        const Real scale = reach > 0 && total > 0 ? total / reach : 0;
-        largest_change = std::max(largest_change, (after - before).head<2>().norm() +
-                                                      scale * std::abs(after.z() - before.z()));
-        largest = std::max(largest, after.head<2>().norm());
-      }
+      by_colour(colours, sizes, [&](int k, SweepSize& size) {
+        friction_update(k, friction, patches, points, impulses, mu, size);
+      });
     }
-    report.change = largest > 0 ? largest_change / largest : 0;
+    SweepSize total;
+    for (const SweepSize& s : sizes) total.add(s.change, s.largest);
+    report.change = total.largest > 0 ? total.change / total.largest : 0;
     if (report.change <= settings.tolerance) return report;
   }
   report.sweeps = settings.max_sweeps;
@@ -294,13 +377,14 @@ Vec3 relative_velocity(const std::vector<BodyResponse>& bodies, const std::vecto
 namespace {
 
 // The solve for given normal targets; `bodies` ends with the pseudo velocities after it.
-SolverReport solve_targets(const std::vector<ContactPoint>& points,
-                           const std::vector<Real>& targets,
-                           const std::vector<BodyResponse>& input,
-                           const std::vector<Vec3>& centres, const SolverSettings& settings,
-                           std::vector<PatchFriction>& patches,
-                           std::vector<PointImpulse>& impulses,
-                           std::vector<BodyResponse>& bodies) {
+// The solve on patches laid out by colour (`colours`: where each colour starts).
+SolverReport solve_laid_out(const std::vector<ContactPoint>& points,
+                            const std::vector<Real>& targets,
+                            const std::vector<BodyResponse>& input,
+                            const std::vector<Vec3>& centres, const SolverSettings& settings,
+                            const std::vector<int>& colours, std::vector<PatchFriction>& patches,
+                            std::vector<PointImpulse>& impulses,
+                            std::vector<BodyResponse>& bodies) {
   const size_t n = points.size();
   impulses.resize(n);
   bodies = input;  // pseudo velocities, updated in place
@@ -369,14 +453,63 @@ SolverReport solve_targets(const std::vector<ContactPoint>& points,
     warm = warm || p.t1 != 0 || p.t2 != 0 || p.twist != 0;
     apply_friction(friction[k], p, Vec3(p.t1, p.t2, p.twist));
   }
-  SolverReport report = sweep(rows, friction, patches, points, settings, impulses);
+  SolverReport report = sweep(rows, friction, patches, points, colours, settings, impulses);
   if (!report.converged && warm && energy_change(bodies, input) > 0) {
     std::copy(input.begin(), input.end(), bodies.begin());  // the rows point into `bodies`
     std::fill(impulses.begin(), impulses.end(), PointImpulse{});
     for (PatchFriction& p : patches) p.t1 = p.t2 = p.twist = 0;
     const int first_sweeps = report.sweeps;
-    report = sweep(rows, friction, patches, points, settings, impulses);
+    report = sweep(rows, friction, patches, points, colours, settings, impulses);
     report.sweeps += first_sweeps;
+  }
+  return report;
+}
+
+// The solve for given normal targets; `bodies` ends with the pseudo velocities after it.
+// Patches and their points are laid out by colour for the solve, and the results put back.
+SolverReport solve_targets(const std::vector<ContactPoint>& points,
+                           const std::vector<Real>& targets,
+                           const std::vector<BodyResponse>& input,
+                           const std::vector<Vec3>& centres, const SolverSettings& settings,
+                           std::vector<PatchFriction>& patches,
+                           std::vector<PointImpulse>& impulses,
+                           std::vector<BodyResponse>& bodies) {
+  impulses.resize(points.size());
+  if (!settings.colour_sweeps) {
+    // Patch order, one by one: a single serial "colour" holding every patch.
+    const std::vector<int> one_by_one = {0, 0, static_cast<int>(patches.size())};
+    return solve_laid_out(points, targets, input, centres, settings, one_by_one, patches,
+                          impulses, bodies);
+  }
+  const Colouring colouring = colour_patches(patches, input);
+  std::vector<ContactPoint> laid_points;
+  std::vector<Real> laid_targets;
+  std::vector<PointImpulse> laid_impulses;
+  std::vector<PatchFriction> laid_patches;
+  laid_points.reserve(points.size());
+  laid_targets.reserve(points.size());
+  laid_impulses.reserve(points.size());
+  laid_patches.reserve(patches.size());
+  for (int k : colouring.order) {
+    PatchFriction p = patches[k];
+    p.first = static_cast<int>(laid_points.size());
+    for (int i = patches[k].first; i < patches[k].last; ++i) {
+      laid_points.push_back(points[i]);
+      laid_targets.push_back(targets[i]);
+      laid_impulses.push_back(impulses[i]);
+    }
+    p.last = static_cast<int>(laid_points.size());
+    laid_patches.push_back(p);
+  }
+  const SolverReport report = solve_laid_out(laid_points, laid_targets, input, centres, settings,
+                                             colouring.start, laid_patches, laid_impulses, bodies);
+  for (size_t j = 0; j < colouring.order.size(); ++j) {
+    PatchFriction& p = patches[colouring.order[j]];
+    const PatchFriction& laid = laid_patches[j];
+    for (int r = 0; r < p.last - p.first; ++r) impulses[p.first + r] = laid_impulses[laid.first + r];
+    p.t1 = laid.t1;
+    p.t2 = laid.t2;
+    p.twist = laid.twist;
   }
   return report;
 }
@@ -409,12 +542,13 @@ SolverReport solve_separation(const std::vector<ContactPoint>& points,
                               const std::vector<BodyResponse>& bodies,
                               const std::vector<Vec3>& centres,
                               std::vector<PatchFriction> patches,
-                              std::vector<BodyResponse>& velocities, Real tolerance,
-                              int max_sweeps) {
+                              std::vector<BodyResponse>& velocities,
+                              const SolverSettings& stopping) {
   SolverSettings settings;
   settings.friction = 0;
-  settings.tolerance = tolerance;
-  settings.max_sweeps = max_sweeps;
+  settings.tolerance = stopping.tolerance;
+  settings.max_sweeps = stopping.max_sweeps;
+  settings.colour_sweeps = stopping.colour_sweeps;
   std::vector<PointImpulse> impulses(points.size());
   for (PatchFriction& p : patches) p.t1 = p.t2 = p.twist = 0;
   return solve_targets(points, targets, bodies, centres, settings, patches, impulses,

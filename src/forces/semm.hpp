@@ -55,6 +55,7 @@ struct SolverSettings {
   Real restitution_threshold = 0;  // approach speeds below this are resting contact (e = 0)
   int max_sweeps = 500;
   Real tolerance = 1e-9;  // relative change of the impulses that ends the sweeps
+  bool colour_sweeps = false;  // sweep by colours (threads share them) instead of patch order
 };
 
 struct SolverReport {
@@ -88,8 +89,8 @@ SolverReport solve_separation(const std::vector<ContactPoint>& points,
                               const std::vector<BodyResponse>& bodies,
                               const std::vector<Vec3>& centres,
                               std::vector<PatchFriction> patches,
-                              std::vector<BodyResponse>& velocities, Real tolerance = 1e-9,
-                              int max_sweeps = 500);
+                              std::vector<BodyResponse>& velocities,
+                              const SolverSettings& stopping = SolverSettings{});
 
 // The paper's unconstrained normal-only SEMM: K S = D, solved directly.
 SolverReport solve_semm_paper(const std::vector<ContactPoint>& points,

@@ -91,7 +91,8 @@ const KeyList kSceneKeys = {"gravity",   "time_step", "duration", "integrator", 
                             "container", "walls",     "bodies",   "fill",       "output"};
 const KeyList kContactKeys = {"model",   "friction", "restitution", "stiffness",
                               "damping", "normals",  "points",      "law",
-                              "tangential_stiffness", "tolerance", "max_sweeps"};
+                              "tangential_stiffness", "tolerance", "max_sweeps",
+                              "sweep_order"};
 const KeyList kContainerKeys = {"min", "max"};
 const KeyList kWallKeys = {"point", "normal"};
 const KeyList kOutputKeys = {"interval", "checkpoint_interval", "paraview"};
@@ -248,6 +249,12 @@ class SceneReader {
     }
     r_.read_number(j, path, "tolerance", &contact->tolerance, Bound::positive);
     r_.read_int(j, path, "max_sweeps", &contact->max_sweeps, 1, 1'000'000);
+    if (const Json* o = Reader::get(j, "sweep_order")) {
+      if (auto coloured = r_.choice<bool>(*o, child(path, "sweep_order"),
+                                          {{"patches", false}, {"colours", true}})) {
+        contact->colour_sweeps = *coloured;
+      }
+    }
     // Cundall and Strack's ratio when not given.
     contact->tangential_stiffness = 2.0 / 7.0 * contact->stiffness;
     r_.read_number(j, path, "tangential_stiffness", &contact->tangential_stiffness,

@@ -203,7 +203,8 @@ Json scene_to_json(const SceneDef& scene) {
                       {"normals", scene.contact.normals == PatchNormals::paper ? "paper" : "faces"},
                       {"points", scene.contact.points == PatchPoints::one ? "one" : "corners"},
                       {"tolerance", scene.contact.tolerance},
-                      {"max_sweeps", scene.contact.max_sweeps}};
+                      {"max_sweeps", scene.contact.max_sweeps},
+                      {"sweep_order", scene.contact.colour_sweeps ? "colours" : "patches"}};
   if (scene.container) {
     j["container"] = Json{{"min", vec3(scene.container->min)}, {"max", vec3(scene.container->max)}};
   }
