@@ -42,6 +42,8 @@ def run(tem, scene_path, duration, threads):
     if duration:
         scene["duration"] = duration
     scene.setdefault("output", {})["interval"] = max(0.01, scene["time_step"])
+    scene["output"]["paraview"] = False  # the step is measured, not the file writing
+    scene["output"]["checkpoint_interval"] = 0
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "scene.json")
         with open(path, "w") as f:

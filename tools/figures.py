@@ -18,6 +18,7 @@ import argparse
 import csv
 import json
 import os
+import sys
 import xml.etree.ElementTree as ET
 
 import matplotlib
@@ -174,6 +175,9 @@ def main():
     parser.add_argument("--azimuth", type=float, default=-60, help="view azimuth (deg)")
     args = parser.parse_args()
     prefix = args.out or os.path.join(args.run_dir, "figure")
+    if not os.path.exists(os.path.join(args.run_dir, "tem.pvd")):
+        sys.exit(f"figures: {args.run_dir}/tem.pvd not found: the snapshots need the ParaView "
+                 "files, written when the scene sets \"output\": {\"paraview\": true}")
     chosen = pick_frames(read_frames(args.run_dir), args.times, args.frames)
     print(snapshots(args.run_dir, chosen, prefix, args.elevation, args.azimuth))
     print(energy_plot(args.run_dir, prefix))

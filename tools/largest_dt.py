@@ -139,6 +139,7 @@ def run_one(tem, scene, scene_path, dt, args, work):
     if args.duration is not None:
         s["duration"] = args.duration
     out = s.setdefault("output", {})
+    out["paraview"] = False  # only the CSV files are judged
     if args.every_step:
         out["interval"] = dt
     elif args.interval is not None:

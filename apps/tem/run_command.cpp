@@ -154,7 +154,8 @@ int run_command(const std::string& scene_file, const std::string& out_dir, bool 
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     print_summary(model, state, workspace, wall);
     std::cerr << "tem run: results in " << out_dir << "/ (bodies.csv, energy.csv"
-              << (contacts ? ", contacts.csv" : "") << ", scene.json)\n";
+              << (contacts ? ", contacts.csv" : "") << ", scene.json, checkpoint.bin"
+              << (scene.output.paraview ? ", tem.pvd and paraview/ for ParaView" : "") << ")\n";
     if (hash) std::cout << "hash: " << hash_hex(state_hash(state)) << std::endl;
   } catch (const std::exception& e) {
     std::cerr << "tem run: " << e.what() << "\n";
