@@ -41,6 +41,12 @@ void print_summary(const Model& model, const State& state, const Workspace& w, d
                t.unconverged_steps, t.patches / steps, t.points / steps,
                t.patches > 0 ? 1e6 * wall / static_cast<double>(t.patches) : 0.0, e.kinetic,
                e.potential, e.total());
+  if (t.outran_margin > 0)
+    std::fprintf(stderr,
+                 "  warning: %lld times a body moved farther in one step than its contact margin "
+                 "covered (it may have met a contact already overlapping); a smaller time_step "
+                 "or a larger contact.margin avoids it\n",
+                 t.outran_margin);
 }
 
 // The penalty model is explicit: above a tenth of the contact's period it goes unstable.

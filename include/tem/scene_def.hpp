@@ -23,6 +23,9 @@ enum class ContactModel { semm, semm_paper, penalty };
 enum class PatchNormals { paper, faces };
 // Where a patch's force acts: one point (the paper), or its extreme overlap corners.
 enum class PatchPoints { one, corners };
+// The default SEMM's solver: one scalar row per contact point (fast; the default), or each
+// patch's normal impulses solved together as one block (Lawson-Hanson; before issue 11).
+enum class ContactSolver { rows, blocks };
 // The penalty model's normal law: F = k d (linear) or F = k d^(3/2) (Hertz).
 enum class PenaltyLaw { linear, hertz };
 
@@ -97,6 +100,11 @@ struct ContactDef {
   // sweeps (results then differ from patch order in the last digits, but not between thread
   // counts).
   bool colour_sweeps = false;
+  // Contact before overlap (contact_margins.hpp): the pair gap under which separated blocks
+  // already make contact points; empty for "auto" (from the bodies' sizes and motion, the
+  // default), 0 for none (contact only after overlap).
+  std::optional<Real> margin;
+  ContactSolver solver = ContactSolver::rows;
 };
 
 struct WallDef {

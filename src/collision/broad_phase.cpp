@@ -35,7 +35,7 @@ void BroadPhase::build_proxies(const Model& model) {
       proxies_.push_back({b, i});
 }
 
-void BroadPhase::update(const Model& model, const State& state) {
+void BroadPhase::update(const Model& model, const State& state, const std::vector<Real>& reach) {
   size_t block_count = 0;
   for (const Body& body : model.bodies) block_count += body.blocks.size();
   if (proxies_.size() != block_count) build_proxies(model);
@@ -48,9 +48,13 @@ void BroadPhase::update(const Model& model, const State& state) {
     const BlockInstance& instance = model.bodies[p.body].blocks[p.instance];
     poses_[i] = block_pose(instance, state.bodies[p.body]);
     bounds_[i] = block_bounds(model.blocks[instance.block], poses_[i]);
+    if (!reach.empty()) {
+      bounds_[i].min.array() -= reach[p.body];
+      bounds_[i].max.array() += reach[p.body];
+    }
   }
   find_block_pairs(model);
-  find_wall_pairs(model);
+  find_wall_pairs(model, reach);
 }
 
 void BroadPhase::find_block_pairs(const Model& model) {
@@ -128,16 +132,17 @@ void BroadPhase::find_block_pairs(const Model& model) {
   });
 }
 
-void BroadPhase::find_wall_pairs(const Model& model) {
+void BroadPhase::find_wall_pairs(const Model& model, const std::vector<Real>& reach) {
   wall_pairs_.clear();
   for (int i = 0; i < static_cast<int>(proxies_.size()); ++i) {
     if (model.bodies[proxies_[i].body].fixed) continue;
     const Vec3 centre = (bounds_[i].min + bounds_[i].max) / 2;
     const Vec3 half = (bounds_[i].max - bounds_[i].min) / 2;
+    const Real extra = reach.empty() ? 0 : reach[proxies_[i].body];  // bounds grew by one reach
     for (int w = 0; w < static_cast<int>(model.walls.size()); ++w) {
       const Wall& wall = model.walls[w];
       // The lowest corner of the bounds along the wall's normal: behind the plane or not.
-      if (wall.normal.dot(centre - wall.point) - wall.normal.cwiseAbs().dot(half) < 0)
+      if (wall.normal.dot(centre - wall.point) - wall.normal.cwiseAbs().dot(half) < extra)
         wall_pairs_.push_back({i, w});
     }
   }

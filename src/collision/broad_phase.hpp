@@ -46,8 +46,11 @@ struct WallPair {
 class BroadPhase {
  public:
   // Poses and world bounds of every block at `state`, then the overlapping pairs. Pairs of two
-  // fixed bodies, and fixed bodies against walls, are never reported.
-  void update(const Model& model, const State& state);
+  // fixed bodies, and fixed bodies against walls, are never reported. With `reach` (one per
+  // body, contact_margins.hpp) every block's bounds grow by its body's reach, and a block is
+  // paired with a wall when its bounds come within twice its reach of the plane: the pairs
+  // that may make contact before overlap.
+  void update(const Model& model, const State& state, const std::vector<Real>& reach = {});
 
   const std::vector<BlockProxy>& proxies() const { return proxies_; }
   const std::vector<BlockPose>& poses() const { return poses_; }
@@ -61,7 +64,7 @@ class BroadPhase {
  private:
   void build_proxies(const Model& model);
   void find_block_pairs(const Model& model);
-  void find_wall_pairs(const Model& model);
+  void find_wall_pairs(const Model& model, const std::vector<Real>& reach);
 
   std::vector<BlockProxy> proxies_;
   std::vector<BlockPose> poses_;

@@ -3,6 +3,7 @@
 
 #include <vector>
 
+#include "collision/block_manifold.hpp"
 #include "tem/types.hpp"
 
 namespace tem {
@@ -19,6 +20,10 @@ struct ContactPatch {
   // default variant these are the corners of the overlap region (polygon edges only).
   std::vector<Vec3> vertices;
   Vec3 bounds_min = Vec3::Zero(), bounds_max = Vec3::Zero();  // of the vertices
+  // A patch of contact before overlap (block_manifold.hpp) has no vertices but at most four
+  // points, each with its own gap; its depth is then minus the smallest gap (< 0: still apart).
+  // count 0 for a patch of overlap features.
+  Manifold manifold;
 };
 
 }  // namespace tem

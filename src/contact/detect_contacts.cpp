@@ -5,6 +5,29 @@
 #include "world/parallel.hpp"
 
 namespace tem {
+namespace {
+
+// A patch of contact before overlap from a manifold.
+ContactPatch manifold_patch(const Manifold& m) {
+  ContactPatch p;
+  p.normal = m.normal;
+  p.manifold = m;
+  p.features = m.count;
+  p.bounds_min = p.bounds_max = m.point[0];
+  Real smallest_gap = m.gap[0];
+  Vec3 sum = Vec3::Zero();
+  for (int k = 0; k < m.count; ++k) {
+    sum += m.point[k];
+    smallest_gap = std::min(smallest_gap, m.gap[k]);
+    p.bounds_min = p.bounds_min.cwiseMin(m.point[k]);
+    p.bounds_max = p.bounds_max.cwiseMax(m.point[k]);
+  }
+  p.point = sum / m.count;
+  p.depth = -smallest_gap;
+  return p;
+}
+
+}  // namespace
 
 PatchVariant patch_variant(const SceneDef& scene) {
   return scene.contact.normals == PatchNormals::paper ? NormalVariant::paper
@@ -14,7 +37,7 @@ PatchVariant patch_variant(const SceneDef& scene) {
 void detect_contacts(const Model& model, const State& state, PatchVariant variant,
                      ContactWorkspace& w, std::vector<ContactPatch>& patches) {
   // 1. Broad phase: candidate block pairs and block-wall pairs from world bounds.
-  w.broad_phase.update(model, state);
+  w.broad_phase.update(model, state, w.reach);
   find_patches(model, variant, w, patches);
 }
 
@@ -37,6 +60,7 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
   const long long n_all = n_block + static_cast<long long>(wall_pairs.size());
   const long long runs = (n_all + kRun - 1) / kRun;
   w.threads.resize(static_cast<size_t>(max_threads()));
+  const bool ahead = !w.reach.empty();
 
   // Tests items [begin, end) in order, appending their patches to `out`.
   auto test_items = [&](long long begin, long long end, PairScratch& s,
@@ -46,6 +70,17 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
       if (item < n_block) {
         const BlockPair& pair = block_pairs[static_cast<size_t>(item)];
         const Block &a = block_of(pair.a), &b = block_of(pair.b);
+        if (ahead) {
+          const int body_a = proxies[pair.a].body, body_b = proxies[pair.b].body;
+          Manifold m;
+          if (block_manifold(a, poses[pair.a], b, poses[pair.b], w.reach[body_a] + w.reach[body_b],
+                             s.manifold, m)) {
+            out.push_back(manifold_patch(m));
+            out.back().body_a = body_a;
+            out.back().body_b = body_b;
+          }
+          continue;
+        }
         if (!block_pair_features(a, poses[pair.a], b, poses[pair.b], s.narrow, s.pair)) continue;
         pair_patches(a, poses[pair.a], b, poses[pair.b], s.pair, variant, s.patch, out);
         for (size_t k = first; k < out.size(); ++k) {
@@ -56,6 +91,17 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
         const WallPair& pair = wall_pairs[static_cast<size_t>(item - n_block)];
         const Wall& wall = model.walls[pair.wall];
         const Block& block = block_of(pair.proxy);
+        if (ahead) {
+          const int body = proxies[pair.proxy].body;
+          Manifold m;
+          if (wall_manifold(block, poses[pair.proxy], wall.point, wall.normal, 2 * w.reach[body],
+                            s.manifold, m)) {
+            out.push_back(manifold_patch(m));
+            out.back().body_a = body;
+            out.back().wall = pair.wall;
+          }
+          continue;
+        }
         block_wall_features(block, poses[pair.proxy], wall.point, wall.normal, s.wall);
         wall_patches(block, poses[pair.proxy], wall.point, wall.normal, s.wall, variant, s.patch,
                      out);
@@ -89,7 +135,9 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
                      if (pw != qw) return qw;
                      return pw ? p.wall < q.wall : p.body_b < q.body_b;
                    });
-  merge_touching_patches(patches);
+  // (Patches of contact before overlap stay one per block pair: each is one face-on-face or
+  // edge-on-edge place with its own normal.)
+  if (!ahead) merge_touching_patches(patches);
 }
 
 }  // namespace tem

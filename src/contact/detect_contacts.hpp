@@ -21,6 +21,7 @@ struct PairScratch {
   PairFeatures pair;
   WallFeatures wall;
   PatchScratch patch;
+  ManifoldScratch manifold;
 };
 
 // Everything contact detection reuses from one step to the next.
@@ -28,9 +29,14 @@ struct ContactWorkspace {
   BroadPhase broad_phase;
   std::vector<PairScratch> threads;                // one per OpenMP thread
   std::vector<std::vector<ContactPatch>> chunks;  // the patches of each run of pairs
+  // Per body, how far ahead of overlap it makes contact (contact_margins.hpp); empty: contact
+  // only after overlap, by the paper's tests.
+  std::vector<Real> reach;
 };
 
-// Narrow phase and patches for the pairs of the workspace's last broad-phase update. Patches
+// Narrow phase and patches for the pairs of the workspace's last broad-phase update: with the
+// workspace's reach, patches of contact before overlap (block_manifold.hpp), else the paper's
+// overlap tests and grouping (narrow_phase.hpp, patches.hpp). Patches
 // ordered by body pair (walls after bodies, by wall index), deterministic: the pairs are shared
 // among OpenMP threads in runs, each run's patches kept apart and joined in pair order, so the
 // result is the same, bit for bit, with any number of threads.

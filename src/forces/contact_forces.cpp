@@ -101,13 +101,20 @@ void compute_contact_forces(const Model& model, const State& state,
     settings.tolerance = scene.contact.tolerance;
     settings.max_sweeps = scene.contact.max_sweeps;
     settings.colour_sweeps = scene.contact.colour_sweeps;
+    settings.time_step = dt;
     // Slower than what gravity adds in two steps is resting contact, not an impact.
     settings.restitution_threshold = 2 * scene.gravity.norm() * dt;
     if (f.match_radius.size() != n_bodies) match_radii(model, f.match_radius);
     warm_start(f.previous_points, f.previous_impulses, f.points, f.match_radius, f.impulses);
     warm_start_friction(f.previous_friction, f.match_radius, f.friction);
-    f.solver = solve_semm(f.points, f.approach, f.responses, f.centres, settings, f.friction,
-                          f.impulses);
+    if (scene.contact.solver == ContactSolver::rows) {
+      normal_targets(f.points, f.approach, settings, f.targets);
+      f.solver = solve_semm_rows(f.points, f.approach, f.targets, f.responses, f.centres, settings,
+                                 f.friction, f.impulses, f.rows);
+    } else {
+      f.solver = solve_semm(f.points, f.approach, f.responses, f.centres, settings, f.friction,
+                            f.impulses);
+    }
   }
 
   // Impulses to forces held through the step: on B +j, on A -j, with their moments.

@@ -10,6 +10,7 @@
 #include "forces/contact_points.hpp"
 #include "forces/penalty.hpp"
 #include "forces/semm.hpp"
+#include "forces/semm_rows.hpp"
 #include "world/model.hpp"
 
 namespace tem {
@@ -26,7 +27,9 @@ struct ContactForces {
   std::vector<BodyResponse> responses;
   std::vector<Vec3> centres;
   std::vector<Real> approach;  // normal relative velocity at each point at the step's start
+  std::vector<Real> targets;   // normal relative velocity each point asks for after the step
   std::vector<PatchFriction> friction;  // one per patch (default SEMM)
+  RowSolverMemory rows;                 // the scalar-row solver's memory
   std::vector<Real> patch_depth;         // one per patch
   std::vector<PointImpulse> impulses;
   // The last step's points and impulses, for the warm start; how far a point may move and still

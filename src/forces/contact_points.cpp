@@ -26,6 +26,16 @@ void patch_points(const ContactPatch& patch, int index, bool one_per_patch,
   base.tangent2 = patch.normal.cross(base.tangent1);
   base.depth = patch.depth;
   base.point = patch.point;
+  if (patch.manifold.count > 0) {
+    // Contact before overlap: the patch's own points, each with its own gap.
+    for (int k = 0; k < patch.manifold.count; ++k) {
+      ContactPoint p = base;
+      p.point = patch.manifold.point[k];
+      p.depth = -patch.manifold.gap[k];
+      out.push_back(p);
+    }
+    return;
+  }
   if (one_per_patch || patch.vertices.size() < 2) {
     out.push_back(base);
     return;

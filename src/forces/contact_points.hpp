@@ -23,11 +23,13 @@ struct ContactPoint {
   Vec3 normal;   // unit, from A into B
   Vec3 tangent1, tangent2;  // with normal, a right-handed orthonormal frame
   Real depth;    // the overlap's depth at this point: the patch's for a single point; for a
-                 // corner, how far it lies along the normal beyond the shallowest corner
+                 // corner, how far it lies along the normal beyond the shallowest corner; for a
+                 // point of contact before overlap, minus its gap (< 0 while still apart)
 };
 
-// Appends the points of patch `index`: one (the patch point) when `one_per_patch`, else the
-// extreme corners described above (at least one).
+// Appends the points of patch `index`: a patch of contact before overlap its own (at most four);
+// else one (the patch point) when `one_per_patch`, else the extreme corners described above (at
+// least one).
 void patch_points(const ContactPatch& patch, int index, bool one_per_patch,
                   std::vector<ContactPoint>& out);
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cmath>
 
+#include "forces/patch_colouring.hpp"
 #include "world/parallel.hpp"
 
 namespace tem {
@@ -192,57 +193,6 @@ Vec friction_block(const Vec& now, const Vec& velocity, const Vec& start, const 
   return f;
 }
 
-// The order in which Gauss-Seidel visits the patches: by colour, so that the patches of one
-// colour share no moving body. Their updates then read and write disjoint bodies, so within a
-// colour they can go in any order, or on several threads, and give the same bits: the answer
-// depends on the colouring, never on the thread count. Greedy, in patch order: a patch takes the
-// lowest colour neither of its bodies has yet; the few that find none of 64 go last, one by one.
-// The solver works on the patches and points laid out in this order (solve_targets), so that
-// each colour's rows lie together in memory.
-constexpr int kColours = 64;
-
-struct Colouring {
-  std::vector<int> order;  // patch indices, colour by colour, in patch order within a colour
-  std::vector<int> start;  // colour c is order[start[c], start[c + 1]); the last one is serial
-};
-
-Colouring colour_patches(const std::vector<PatchFriction>& patches,
-                         const std::vector<BodyResponse>& bodies) {
-  std::vector<std::uint64_t> used(bodies.size(), 0);
-  auto moving = [&](int b) { return b >= 0 && bodies[b].inverse_mass > 0 ? b : -1; };
-  std::vector<int> colour(patches.size());
-  std::array<int, kColours + 1> count{};
-  for (size_t k = 0; k < patches.size(); ++k) {
-    const int a = moving(patches[k].body_a), b = moving(patches[k].body_b);
-    const std::uint64_t taken = (a >= 0 ? used[a] : 0) | (b >= 0 ? used[b] : 0);
-    const int c = ~taken == 0 ? kColours : std::countr_zero(~taken);
-    if (c < kColours) {
-      if (a >= 0) used[a] |= std::uint64_t{1} << c;
-      if (b >= 0) used[b] |= std::uint64_t{1} << c;
-    }
-    colour[k] = c;
-    ++count[c];
-  }
-  Colouring out;
-  out.start.assign(kColours + 2, 0);
-  for (int c = 0; c <= kColours; ++c) out.start[c + 1] = out.start[c] + count[c];
-  out.order.resize(patches.size());
-  std::array<int, kColours + 1> next{};
-  for (int c = 0; c <= kColours; ++c) next[c] = out.start[c];
-  for (size_t k = 0; k < patches.size(); ++k) out.order[next[colour[k]]++] = static_cast<int>(k);
-  return out;
-}
-
-// The largest impulse change and the largest impulse of a sweep, kept per thread (the maximum
-// does not depend on the order it is taken in).
-struct SweepSize {
-  Real change = 0, largest = 0;
-  void add(Real c, Real l) {
-    change = std::max(change, c);
-    largest = std::max(largest, l);
-  }
-};
-
 // One patch's normal impulses, solved together (non-negative, exact for the block).
 void normal_update(int k, std::vector<NormalRow>& rows, std::vector<FrictionRow>& friction,
                    const std::vector<PatchFriction>& patches,
@@ -302,24 +252,6 @@ void friction_update(int k, std::vector<FrictionRow>& friction,
            after.head<2>().norm());
 }
 
-// Runs `update(k, size)` on every patch, colour after colour (the patches laid out by colour:
-// colour c is [start[c], start[c + 1])); a colour's patches are shared among the threads when
-// there are enough of them to be worth a parallel region.
-template <class Update>
-void by_colour(const std::vector<int>& start, std::vector<SweepSize>& sizes, Update&& update) {
-  const int n_colours = static_cast<int>(start.size()) - 1;
-  for (int c = 0; c < n_colours; ++c) {
-    const int first = start[c], count = start[c + 1] - first;
-    if (c == n_colours - 1) {  // patches that found no colour: one by one
-      for (int k = first; k < first + count; ++k) update(k, sizes[0]);
-      continue;
-    }
-    parallel_for(count, 64, [&](long long i) {
-      update(first + static_cast<int>(i), sizes[thread_index()]);
-    });
-  }
-}
-
 SolverReport sweep(std::vector<NormalRow>& rows, std::vector<FrictionRow>& friction,
                    std::vector<PatchFriction>& patches, const std::vector<ContactPoint>& points,
                    const std::vector<int>& colours, const SolverSettings& settings,
@@ -348,8 +280,10 @@ SolverReport sweep(std::vector<NormalRow>& rows, std::vector<FrictionRow>& frict
   return report;
 }
 
+}  // namespace
+
 // T(y) - T(y0) of the bodies' pseudo velocities: sum of 1/2 (y + y0).W^-1 (y - y0).
-Real energy_change(const std::vector<BodyResponse>& now, const std::vector<BodyResponse>& start) {
+Real pseudo_energy_change(const std::vector<BodyResponse>& now, const std::vector<BodyResponse>& start) {
   Real change = 0;
   for (size_t b = 0; b < now.size(); ++b) {
     if (start[b].inverse_mass == 0) continue;
@@ -361,8 +295,6 @@ Real energy_change(const std::vector<BodyResponse>& now, const std::vector<BodyR
   }
   return change;
 }
-
-}  // namespace
 
 Vec3 relative_velocity(const std::vector<BodyResponse>& bodies, const std::vector<Vec3>& centres,
                        const ContactPoint& c) {
@@ -454,7 +386,7 @@ SolverReport solve_laid_out(const std::vector<ContactPoint>& points,
     apply_friction(friction[k], p, Vec3(p.t1, p.t2, p.twist));
   }
   SolverReport report = sweep(rows, friction, patches, points, colours, settings, impulses);
-  if (!report.converged && warm && energy_change(bodies, input) > 0) {
+  if (!report.converged && warm && pseudo_energy_change(bodies, input) > 0) {
     std::copy(input.begin(), input.end(), bodies.begin());  // the rows point into `bodies`
     std::fill(impulses.begin(), impulses.end(), PointImpulse{});
     for (PatchFriction& p : patches) p.t1 = p.t2 = p.twist = 0;
@@ -516,23 +448,60 @@ SolverReport solve_targets(const std::vector<ContactPoint>& points,
 
 }  // namespace
 
-SolverReport solve_semm(const std::vector<ContactPoint>& points, const std::vector<Real>& start,
-                        const std::vector<BodyResponse>& bodies, const std::vector<Vec3>& centres,
-                        const SolverSettings& settings, std::vector<PatchFriction>& patches,
-                        std::vector<PointImpulse>& impulses) {
+void normal_targets(const std::vector<ContactPoint>& points, const std::vector<Real>& start,
+                    const SolverSettings& settings, std::vector<Real>& targets) {
   // The normal relative velocity required after the step. An impact (approach faster than the
   // threshold) leaves at e times its approach speed; resting contact must not approach; a point
   // already separating may close again as fast as it was opening, no faster. Why the last: over
   // a step the contact impulse does the work dt/2 lambda (u_start + u_after), so a push on a
   // separating point (u_start > 0, u_after = 0) would add energy; with u_after >= -u_start it
   // adds none, and impacts and resting contacts only take energy out.
-  std::vector<Real> targets(points.size());
+  //
+  // A point still a gap s apart (contact before overlap) must not close past zero. The default
+  // integrator drifts by the mean of the step's start and end velocities (a contact force held
+  // through the step, integrator_default.cpp), so a point closes by dt (c + c')/2 when it
+  // approaches at c at the start and c' at the end: one that arrives too fast for its gap could
+  // only stop at once by bouncing back. So it brakes one step ahead: it asks to end the step
+  // approaching at no more than c' = s/dt - c/2, which leaves a gap s' with exactly c' = 2 s'/dt,
+  // and the next step stops it at zero velocity and zero gap, so it lands within two steps, at
+  // rest, without overlap and without a bounce (where the margin saw it coming: it is at least
+  // twice a step's motion, contact_margins.hpp). A point still far pushes nothing: its free
+  // approach never exceeds what it asks. An impact with restitution (approach above the
+  // threshold) instead leaves at e c in the step after which a braked landing could no longer
+  // hold it, s < c dt (3 - e)/2: at its full approach speed (braking first would eat the
+  // restitution, the known pitfall of speculative contact), from a gap it cannot overrun.
+  // Impulses on such points only take the approach out, so they never add energy; separating,
+  // the energy rule above caps them.
+  const Real dt = settings.time_step;
+  targets.resize(points.size());
   for (size_t i = 0; i < points.size(); ++i) {
     const Real closing = -start[i];
+    const Real gap = -points[i].depth;
+    if (gap > 0 && dt > 0) {
+      Real target;
+      if (settings.restitution > 0 && closing > settings.restitution_threshold) {
+        // An impact to come: no braking, only no overlap (closing by exactly the gap at most).
+        const bool now = gap < closing * dt * (3 - settings.restitution) / 2;
+        target = now ? settings.restitution * closing : std::min<Real>(0, closing - 2 * gap / dt);
+      } else {
+        target = std::min<Real>(0, closing / 2 - gap / dt);
+      }
+      if (closing < 0) target = std::min(target, closing);
+      targets[i] = target;
+      continue;
+    }
     targets[i] = closing > settings.restitution_threshold ? settings.restitution * closing
                  : closing < 0                            ? closing
                                                           : 0;
   }
+}
+
+SolverReport solve_semm(const std::vector<ContactPoint>& points, const std::vector<Real>& start,
+                        const std::vector<BodyResponse>& bodies, const std::vector<Vec3>& centres,
+                        const SolverSettings& settings, std::vector<PatchFriction>& patches,
+                        std::vector<PointImpulse>& impulses) {
+  std::vector<Real> targets;
+  normal_targets(points, start, settings, targets);
   std::vector<BodyResponse> after;
   return solve_targets(points, targets, bodies, centres, settings, patches, impulses, after);
 }

@@ -56,18 +56,30 @@ struct SolverSettings {
   int max_sweeps = 500;
   Real tolerance = 1e-9;  // relative change of the impulses that ends the sweeps
   bool colour_sweeps = false;  // sweep by colours (threads share them) instead of patch order
+  Real time_step = 0;  // for the gaps of contact before overlap (a gap s may close by s)
 };
 
 struct SolverReport {
   int sweeps = 0;       // Gauss-Seidel sweeps, or 1 for the direct solve
   Real change = 0;      // largest impulse change of the last sweep, relative to the largest
   bool converged = true;
+  Real scale = 1;       // < 1: impulses scaled down so as to add no energy (semm_rows.hpp)
 };
 
 // Relative velocity (B minus A, world) of the pseudo velocities y at a point, before any
 // contact impulse: what the objective's gradient sees.
 Vec3 relative_velocity(const std::vector<BodyResponse>& bodies, const std::vector<Vec3>& centres,
                        const ContactPoint& c);
+
+// The normal relative velocity each point asks for after the step (restitution, resting
+// contact, the energy rule for separating points, the gap of contact before overlap), from
+// `start`, the normal relative velocity at the start of the step. semm.cpp says why.
+void normal_targets(const std::vector<ContactPoint>& points, const std::vector<Real>& start,
+                    const SolverSettings& settings, std::vector<Real>& targets);
+
+// T(y) - T(y0) of the bodies' pseudo velocities y against y0: sum of 1/2 (y + y0).W^-1 (y - y0).
+Real pseudo_energy_change(const std::vector<BodyResponse>& now,
+                          const std::vector<BodyResponse>& start);
 
 // Default SEMM by projected Gauss-Seidel. `start` holds, per point, the normal relative velocity
 // at the start of the step (for restitution and the energy rule); `patches` the friction of each

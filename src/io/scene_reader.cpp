@@ -92,7 +92,7 @@ const KeyList kSceneKeys = {"gravity",   "time_step", "duration", "integrator", 
 const KeyList kContactKeys = {"model",   "friction", "restitution", "stiffness",
                               "damping", "normals",  "points",      "law",
                               "tangential_stiffness", "tolerance", "max_sweeps",
-                              "sweep_order"};
+                              "sweep_order", "margin", "solver"};
 const KeyList kContainerKeys = {"min", "max"};
 const KeyList kWallKeys = {"point", "normal"};
 const KeyList kOutputKeys = {"interval", "checkpoint_interval", "paraview"};
@@ -253,6 +253,24 @@ class SceneReader {
       if (auto coloured = r_.choice<bool>(*o, child(path, "sweep_order"),
                                           {{"patches", false}, {"colours", true}})) {
         contact->colour_sweeps = *coloured;
+      }
+    }
+    if (const Json* m = Reader::get(j, "margin")) {
+      if (m->is_string() && m->get_ref<const std::string&>() == "auto") {
+        contact->margin.reset();
+      } else if (m->is_number()) {
+        if (auto margin = r_.number(*m, child(path, "margin"), Bound::non_negative))
+          contact->margin = *margin;
+      } else {
+        r_.fail(child(path, "margin"),
+                "must be \"auto\" or a non-negative number, got " + describe(*m));
+      }
+    }
+    if (const Json* v = Reader::get(j, "solver")) {
+      if (auto solver = r_.choice<ContactSolver>(
+              *v, child(path, "solver"),
+              {{"rows", ContactSolver::rows}, {"blocks", ContactSolver::blocks}})) {
+        contact->solver = *solver;
       }
     }
     // Cundall and Strack's ratio when not given.

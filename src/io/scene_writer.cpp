@@ -204,7 +204,12 @@ Json scene_to_json(const SceneDef& scene) {
                       {"points", scene.contact.points == PatchPoints::one ? "one" : "corners"},
                       {"tolerance", scene.contact.tolerance},
                       {"max_sweeps", scene.contact.max_sweeps},
-                      {"sweep_order", scene.contact.colour_sweeps ? "colours" : "patches"}};
+                      {"sweep_order", scene.contact.colour_sweeps ? "colours" : "patches"},
+                      {"solver", scene.contact.solver == ContactSolver::blocks ? "blocks" : "rows"}};
+  if (scene.contact.margin)
+    j["contact"]["margin"] = *scene.contact.margin;
+  else
+    j["contact"]["margin"] = "auto";
   if (scene.container) {
     j["container"] = Json{{"min", vec3(scene.container->min)}, {"max", vec3(scene.container->max)}};
   }

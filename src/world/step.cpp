@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "dynamics/integrator.hpp"
+#include "contact/contact_margins.hpp"
 #include "forces/overlap_correction.hpp"
 #include "world/parallel.hpp"
 
@@ -30,8 +31,10 @@ void find_contact_forces(const Model& model, const State& state, Workspace& w) {
   const SceneDef& scene = model.scene;
   Clock::time_point clock = Clock::now();
 
-  // 1. Broad phase: block pairs and block-wall pairs whose world bounds overlap.
-  w.contact.broad_phase.update(model, state);
+  // 1. Broad phase: block pairs and block-wall pairs whose world bounds overlap, grown by each
+  // body's reach where contact is made before overlap.
+  contact_reaches(model, state, w.contact.reach);
+  w.contact.broad_phase.update(model, state, w.contact.reach);
   w.times.broad_phase += seconds_since(clock);
 
   // 2-3. Narrow phase and patches: node in element, edge through face, grouping.
@@ -51,6 +54,7 @@ void advance(const Model& model, State& state, Workspace& w) {
   const bool correct = scene.contact.model == ContactModel::semm &&
                        scene.integrator == IntegratorKind::default_ && !w.patches.empty();
   const Real energy_before = correct ? system_energies(model, state).total() : 0;
+  if (!w.contact.reach.empty()) w.before = state.bodies;
   parallel_for(static_cast<long long>(model.bodies.size()), 256, [&](long long i) {
     if (model.bodies[i].fixed) return;
     integrate(scene.integrator, model.bodies[i].inertia, scene.gravity, w.forces.force[i],
@@ -59,6 +63,9 @@ void advance(const Model& model, State& state, Workspace& w) {
   // 6. Correction of existing overlap, within the energy the contacts dissipated (default).
   if (correct && correct_overlap(model, w.forces, energy_before, state).applied)
     ++w.times.corrected_steps;
+  // Bodies that moved farther than their reach could meet a contact already overlapping.
+  if (!w.contact.reach.empty())
+    w.times.outran_margin += bodies_outrunning_reach(model, w.contact.reach, w.before, state.bodies);
   ++state.step;
   // No drift from summing dt; and where dt divides a second (1e-5, 1/240), step / steps per
   // second, the double nearest the decimal time (15000 * 1e-5 is 0.15000000000000002).

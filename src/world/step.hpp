@@ -23,6 +23,7 @@ struct StageTimes {
   long long sweeps = 0;
   long long unconverged_steps = 0;
   long long corrected_steps = 0;  // steps whose overlap correction moved bodies
+  long long outran_margin = 0;    // bodies that moved farther in a step than their reach
   long long patches = 0;          // contact patches and points, summed over the steps
   long long points = 0;
 };
@@ -32,6 +33,7 @@ struct Workspace {
   std::vector<ContactPatch> patches;  // of the last step, at the state it started from
   ContactForces forces;               // of the last step
   StageTimes times;
+  std::vector<BodyState> before;  // the bodies at the step's start (reach check)
 };
 
 // Stages 1-4 at `state`: the patches and the contact forces of the step that starts there.

@@ -1,0 +1,302 @@
+#include "collision/block_manifold.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace tem {
+namespace {
+
+constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
+
+// World nodes and face planes of a block.
+void to_world(const Block& block, const BlockPose& pose, std::vector<Vec3>& nodes,
+              std::vector<Vec3>& normals, std::vector<Real>& offsets) {
+  nodes.resize(block.nodes().size());
+  for (size_t i = 0; i < nodes.size(); ++i) nodes[i] = pose.to_world(block.nodes()[i]);
+  const std::vector<Polygon>& polygons = block.polygons();
+  normals.resize(polygons.size());
+  offsets.resize(polygons.size());
+  for (size_t f = 0; f < polygons.size(); ++f) {
+    normals[f] = pose.rotation * polygons[f].normal;
+    offsets[f] = normals[f].dot(nodes[polygons[f].nodes[0]]);
+  }
+}
+
+struct FaceAxis {
+  Real separation = -kInfinity;
+  int face = -1;
+};
+
+// The face of `self` whose plane the other block's nodes are farthest outside of.
+FaceAxis best_face(const std::vector<Vec3>& normals, const std::vector<Real>& offsets,
+                   const std::vector<Vec3>& other_nodes, Real margin) {
+  FaceAxis best;
+  for (size_t f = 0; f < normals.size(); ++f) {
+    Real lowest = kInfinity;
+    for (const Vec3& p : other_nodes) lowest = std::min(lowest, normals[f].dot(p));
+    const Real s = lowest - offsets[f];
+    if (s > best.separation) {
+      best = {s, static_cast<int>(f)};
+      if (s > margin) return best;  // separated beyond the margin: nothing more to learn
+    }
+  }
+  return best;
+}
+
+struct EdgeAxis {
+  Real separation = -kInfinity;
+  Vec3 axis = Vec3::Zero();
+  int edge_a = -1, edge_b = -1;
+};
+
+// Whether the arcs a-b and c-d on the unit sphere cross (b_x_a = b x a, d_x_c = d x c): the
+// edges with these adjacent face normals (c, d those of B, negated) build a face of the
+// Minkowski difference, the only edge pairs whose cross product can be a separating axis.
+bool minkowski_face(const Vec3& a, const Vec3& b, const Vec3& b_x_a, const Vec3& c, const Vec3& d,
+                    const Vec3& d_x_c) {
+  const Real cba = c.dot(b_x_a), dba = d.dot(b_x_a);
+  const Real adc = a.dot(d_x_c), bdc = b.dot(d_x_c);
+  return cba * dba < 0 && adc * bdc < 0 && cba * bdc > 0;
+}
+
+EdgeAxis best_edges(const Block& a, const BlockPose& pose_a, const Block& b,
+                    const ManifoldScratch& s, Real margin) {
+  EdgeAxis best;
+  const std::vector<Edge>& edges_a = a.edges();
+  const std::vector<Edge>& edges_b = b.edges();
+  for (size_t i = 0; i < edges_a.size(); ++i) {
+    const Edge& ea = edges_a[i];
+    if (!ea.polygon_boundary) continue;
+    const Vec3& na1 = s.normals_a[a.triangles()[ea.triangles[0]].polygon];
+    const Vec3& na2 = s.normals_a[a.triangles()[ea.triangles[1]].polygon];
+    const Vec3 na_x = na2.cross(na1);
+    const Vec3& pa = s.nodes_a[ea.nodes[0]];
+    const Vec3 da = s.nodes_a[ea.nodes[1]] - pa;
+    for (size_t j = 0; j < edges_b.size(); ++j) {
+      const Edge& eb = edges_b[j];
+      if (!eb.polygon_boundary) continue;
+      const Vec3 nb1 = -s.normals_b[b.triangles()[eb.triangles[0]].polygon];
+      const Vec3 nb2 = -s.normals_b[b.triangles()[eb.triangles[1]].polygon];
+      if (!minkowski_face(na1, na2, na_x, nb1, nb2, nb2.cross(nb1))) continue;
+      const Vec3& pb = s.nodes_b[eb.nodes[0]];
+      const Vec3 db = s.nodes_b[eb.nodes[1]] - pb;
+      Vec3 axis = da.cross(db);
+      const Real length = axis.norm();
+      // Parallel edges: their cross product is no axis (a face axis covers that case).
+      if (length <= 1e-6 * da.norm() * db.norm()) continue;
+      axis /= length;
+      if (axis.dot(pa - pose_a.position) < 0) axis = -axis;  // out of A
+      const Real sep = axis.dot(pb - pa);
+      if (sep > best.separation) {
+        best = {sep, axis, static_cast<int>(i), static_cast<int>(j)};
+        if (sep > margin) return best;
+      }
+    }
+  }
+  return best;
+}
+
+// Closest points of the segments p1 + s d1 and p2 + t d2, s and t in [0, 1].
+std::pair<Vec3, Vec3> closest_points(const Vec3& p1, const Vec3& d1, const Vec3& p2,
+                                     const Vec3& d2) {
+  const Vec3 r = p1 - p2;
+  const Real a = d1.dot(d1), e = d2.dot(d2), f = d2.dot(r), c = d1.dot(r), b = d1.dot(d2);
+  const Real denominator = a * e - b * b;
+  Real s = denominator > 0 ? std::clamp((b * f - c * e) / denominator, Real(0), Real(1)) : 0;
+  Real t = (b * s + f) / e;
+  if (t < 0) {
+    t = 0;
+    s = std::clamp(-c / a, Real(0), Real(1));
+  } else if (t > 1) {
+    t = 1;
+    s = std::clamp((b - c) / a, Real(0), Real(1));
+  }
+  return {p1 + s * d1, p2 + t * d2};
+}
+
+// Copies the kept candidates into the manifold.
+void keep(const std::vector<Vec3>& points, const std::vector<Real>& gaps, Manifold& out) {
+  std::array<int, kManifoldPoints> kept{};
+  out.count = reduce_points(out.normal, points.data(), gaps.data(),
+                            static_cast<int>(points.size()), kept);
+  for (int k = 0; k < out.count; ++k) {
+    out.point[k] = points[kept[k]];
+    out.gap[k] = gaps[kept[k]];
+  }
+}
+
+// Clips the incident polygon by the side planes of the reference polygon and keeps the corners
+// within the margin of the reference plane. `ref_nodes`/`inc_nodes` are world nodes.
+void clip_faces(const Block& ref, const std::vector<Vec3>& ref_nodes, const Vec3& ref_normal,
+                Real ref_offset, int ref_face, const Block& inc, const std::vector<Vec3>& inc_nodes,
+                const std::vector<Vec3>& inc_normals, Real margin, ManifoldScratch& s,
+                std::vector<Vec3>& points, std::vector<Real>& gaps) {
+  int incident = 0;
+  Real most_opposed = kInfinity;
+  for (size_t f = 0; f < inc_normals.size(); ++f) {
+    const Real d = inc_normals[f].dot(ref_normal);
+    if (d < most_opposed) {
+      most_opposed = d;
+      incident = static_cast<int>(f);
+    }
+  }
+  s.clip_in.clear();
+  for (int n : inc.polygons()[incident].nodes) s.clip_in.push_back(inc_nodes[n]);
+  const std::vector<int>& loop = ref.polygons()[ref_face].nodes;
+  for (size_t k = 0; k < loop.size() && !s.clip_in.empty(); ++k) {
+    const Vec3& v0 = ref_nodes[loop[k]];
+    const Vec3& v1 = ref_nodes[loop[(k + 1) % loop.size()]];
+    // The loop runs counter-clockwise seen from outside: (v1 - v0) x n points out of the face.
+    const Vec3 side = (v1 - v0).cross(ref_normal);
+    const Real side_offset = side.dot(v0);
+    s.clip_out.clear();
+    for (size_t i = 0; i < s.clip_in.size(); ++i) {
+      const Vec3& p = s.clip_in[i];
+      const Vec3& q = s.clip_in[(i + 1) % s.clip_in.size()];
+      const Real dp = side.dot(p) - side_offset, dq = side.dot(q) - side_offset;
+      if (dp <= 0) s.clip_out.push_back(p);
+      if ((dp < 0 && dq > 0) || (dp > 0 && dq < 0)) s.clip_out.push_back(p + dp / (dp - dq) * (q - p));
+    }
+    std::swap(s.clip_in, s.clip_out);
+  }
+  points.clear();
+  gaps.clear();
+  for (const Vec3& p : s.clip_in) {
+    const Real gap = ref_normal.dot(p) - ref_offset;
+    if (gap > margin) continue;
+    points.push_back(p - 0.5 * gap * ref_normal);
+    gaps.push_back(gap);
+  }
+}
+
+}  // namespace
+
+int reduce_points(const Vec3& normal, const Vec3* points, const Real* gaps, int count,
+                  std::array<int, kManifoldPoints>& kept) {
+  if (count <= kManifoldPoints) {
+    for (int i = 0; i < count; ++i) kept[i] = i;
+    return count;
+  }
+  int deepest = 0;
+  for (int i = 1; i < count; ++i)
+    if (gaps[i] < gaps[deepest]) deepest = i;
+  int farthest = deepest == 0 ? 1 : 0;
+  for (int i = 0; i < count; ++i)
+    if ((points[i] - points[deepest]).squaredNorm() >
+        (points[farthest] - points[deepest]).squaredNorm())
+      farthest = i;
+  const Vec3 chord = points[farthest] - points[deepest];
+  auto side = [&](int i) { return normal.dot(chord.cross(points[i] - points[deepest])); };
+  int left = -1, right = -1;
+  Real most_left = 0, most_right = 0;
+  for (int i = 0; i < count; ++i) {
+    const Real a = side(i);
+    if (a > most_left) {
+      most_left = a;
+      left = i;
+    } else if (a < most_right) {
+      most_right = a;
+      right = i;
+    }
+  }
+  int n = 0;
+  kept[n++] = deepest;
+  kept[n++] = farthest;
+  if (left >= 0) kept[n++] = left;
+  if (right >= 0) kept[n++] = right;
+  return n;
+}
+
+bool block_manifold(const Block& a, const BlockPose& pose_a, const Block& b,
+                    const BlockPose& pose_b, Real margin, ManifoldScratch& s, Manifold& out) {
+  out.count = 0;
+  to_world(a, pose_a, s.nodes_a, s.normals_a, s.offsets_a);
+  to_world(b, pose_b, s.nodes_b, s.normals_b, s.offsets_b);
+  const FaceAxis face_a = best_face(s.normals_a, s.offsets_a, s.nodes_b, margin);
+  if (face_a.separation > margin) return false;
+  const FaceAxis face_b = best_face(s.normals_b, s.offsets_b, s.nodes_a, margin);
+  if (face_b.separation > margin) return false;
+  const EdgeAxis edges = best_edges(a, pose_a, b, s, margin);
+  if (edges.separation > margin) return false;
+
+  // Faces are preferred within a tolerance: they give whole patches, and a choice that flips
+  // between nearly equal axes from step to step would shake a resting body.
+  const Real tolerance = 0.005 * std::min(a.bounding_radius(), b.bounding_radius());
+  const Real face_best = std::max(face_a.separation, face_b.separation);
+  std::vector<Vec3>& candidates = s.candidates;
+  std::vector<Real>& gaps = s.candidate_gaps;
+  if (edges.edge_a >= 0 && edges.separation > face_best + tolerance) {
+    const Edge& ea = a.edges()[edges.edge_a];
+    const Edge& eb = b.edges()[edges.edge_b];
+    const Vec3& pa = s.nodes_a[ea.nodes[0]];
+    const Vec3& pb = s.nodes_b[eb.nodes[0]];
+    const auto [ca, cb] = closest_points(pa, s.nodes_a[ea.nodes[1]] - pa, pb,
+                                         s.nodes_b[eb.nodes[1]] - pb);
+    out.normal = edges.axis;
+    out.count = 1;
+    out.point[0] = 0.5 * (ca + cb);
+    out.gap[0] = edges.separation;
+    return true;
+  }
+  if (face_b.separation > face_a.separation + tolerance) {
+    clip_faces(b, s.nodes_b, s.normals_b[face_b.face], s.offsets_b[face_b.face], face_b.face, a,
+               s.nodes_a, s.normals_a, margin, s, candidates, gaps);
+    out.normal = -s.normals_b[face_b.face];
+  } else {
+    clip_faces(a, s.nodes_a, s.normals_a[face_a.face], s.offsets_a[face_a.face], face_a.face, b,
+               s.nodes_b, s.normals_b, margin, s, candidates, gaps);
+    out.normal = s.normals_a[face_a.face];
+  }
+  if (candidates.empty()) return false;
+  keep(candidates, gaps, out);
+  return true;
+}
+
+bool wall_manifold(const Block& block, const BlockPose& pose, const Vec3& wall_point,
+                   const Vec3& wall_normal, Real margin, ManifoldScratch& s, Manifold& out) {
+  out.count = 0;
+  to_world(block, pose, s.nodes_a, s.normals_a, s.offsets_a);
+  const Real offset = wall_normal.dot(wall_point);
+  int deepest = 0;
+  Real deepest_gap = kInfinity;
+  for (size_t i = 0; i < s.nodes_a.size(); ++i) {
+    const Real gap = wall_normal.dot(s.nodes_a[i]) - offset;
+    if (gap < deepest_gap) {
+      deepest_gap = gap;
+      deepest = static_cast<int>(i);
+    }
+  }
+  if (deepest_gap > margin) return false;
+  int incident = 0;
+  Real most_opposed = kInfinity;
+  for (size_t f = 0; f < s.normals_a.size(); ++f) {
+    const Real d = s.normals_a[f].dot(wall_normal);
+    if (d < most_opposed) {
+      most_opposed = d;
+      incident = static_cast<int>(f);
+    }
+  }
+  std::vector<Vec3>& candidates = s.candidates;
+  std::vector<Real>& gaps = s.candidate_gaps;
+  candidates.clear();
+  gaps.clear();
+  bool has_deepest = false;
+  auto add = [&](int node) {
+    const Vec3& p = s.nodes_a[node];
+    const Real gap = wall_normal.dot(p) - offset;
+    if (gap > margin) return;
+    candidates.push_back(p - 0.5 * gap * wall_normal);
+    gaps.push_back(gap);
+  };
+  for (int n : block.polygons()[incident].nodes) {
+    has_deepest = has_deepest || n == deepest;
+    add(n);
+  }
+  if (!has_deepest) add(deepest);
+  out.normal = -wall_normal;
+  keep(candidates, gaps, out);
+  return out.count > 0;
+}
+
+}  // namespace tem

@@ -1,0 +1,337 @@
+#include "forces/semm_rows.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tem {
+namespace {
+
+using Memory = RowSolverMemory;
+using Vec2 = Eigen::Matrix<Real, 2, 1>;
+
+// The slot of a body in the solver's velocity arrays: its own if it moves, else the still one.
+int slot_of(const std::vector<BodyResponse>& bodies, int body) {
+  return body >= 0 && bodies[body].inverse_mass > 0 ? body : static_cast<int>(bodies.size());
+}
+
+// Builds patch k's rows (laid out at [first, first + its points)) and its friction row.
+void build_patch(const std::vector<ContactPoint>& points, const std::vector<Real>& targets,
+                 const std::vector<BodyResponse>& bodies, const std::vector<Vec3>& centres,
+                 const PatchFriction& p, const std::vector<PointImpulse>& impulses, int first,
+                 Memory& m, Memory::FrictionRow& f) {
+  const int still = static_cast<int>(bodies.size());
+  const int a = slot_of(bodies, p.body_a), b = slot_of(bodies, p.body_b);
+  const Real inv_a = m.inverse_mass[a], inv_b = m.inverse_mass[b];
+  const Mat3 q_a = a == still ? Mat3::Zero() : bodies[a].angular;
+  const Mat3 q_b = b == still ? Mat3::Zero() : bodies[b].angular;
+  const Vec3 centre_a = a == still ? Vec3::Zero() : centres[a];
+  const Vec3 centre_b = b == still ? Vec3::Zero() : centres[b];
+  for (int i = p.first; i < p.last; ++i) {
+    const ContactPoint& c = points[i];
+    Memory::NormalRow& row = m.rows[first + (i - p.first)];
+    row.a = a;
+    row.b = b;
+    row.normal = c.normal;
+    row.arm_a_x_n = a == still ? Vec3::Zero() : Vec3((c.point - centre_a).cross(c.normal));
+    row.arm_b_x_n = b == still ? Vec3::Zero() : Vec3((c.point - centre_b).cross(c.normal));
+    row.turn_a = q_a * row.arm_a_x_n;
+    row.turn_b = q_b * row.arm_b_x_n;
+    const Real k = inv_a + inv_b + row.arm_a_x_n.dot(row.turn_a) + row.arm_b_x_n.dot(row.turn_b);
+    row.inverse_k = k > 0 ? 1 / k : 0;
+    row.target = targets[i];
+    row.impulse = impulses[i].normal;
+    row.lever = (c.point - p.centre).norm();
+    m.point_of_row[first + (i - p.first)] = i;
+  }
+  f.a = a;
+  f.b = b;
+  f.first = first;
+  f.last = first + (p.last - p.first);
+  f.tangent1 = p.tangent1;
+  f.tangent2 = p.tangent2;
+  f.normal = p.normal;
+  const Vec3 arm_a = a == still ? Vec3::Zero() : Vec3(p.centre - centre_a);
+  const Vec3 arm_b = b == still ? Vec3::Zero() : Vec3(p.centre - centre_b);
+  f.arm_a_x_t1 = arm_a.cross(p.tangent1);
+  f.arm_a_x_t2 = arm_a.cross(p.tangent2);
+  f.arm_b_x_t1 = arm_b.cross(p.tangent1);
+  f.arm_b_x_t2 = arm_b.cross(p.tangent2);
+  f.turn_a_t1 = q_a * f.arm_a_x_t1;
+  f.turn_a_t2 = q_a * f.arm_a_x_t2;
+  f.turn_b_t1 = q_b * f.arm_b_x_t1;
+  f.turn_b_t2 = q_b * f.arm_b_x_t2;
+  f.turn_a_n = q_a * p.normal;
+  f.turn_b_n = q_b * p.normal;
+  // K's tangential block at the centre: d(slip_r) / d(impulse along t_c).
+  Eigen::Matrix<Real, 2, 2> k;
+  k(0, 0) = inv_a + inv_b + f.arm_a_x_t1.dot(f.turn_a_t1) + f.arm_b_x_t1.dot(f.turn_b_t1);
+  k(1, 1) = inv_a + inv_b + f.arm_a_x_t2.dot(f.turn_a_t2) + f.arm_b_x_t2.dot(f.turn_b_t2);
+  k(0, 1) = k(1, 0) = f.arm_a_x_t1.dot(f.turn_a_t2) + f.arm_b_x_t1.dot(f.turn_b_t2);
+  const Real det = k.determinant();
+  f.inverse_k_slip = det > 0 ? Eigen::Matrix<Real, 2, 2>(k.inverse())
+                             : Eigen::Matrix<Real, 2, 2>::Zero();
+  const Real k_twist = p.normal.dot(f.turn_a_n + f.turn_b_n);
+  f.inverse_k_twist = k_twist > 0 ? 1 / k_twist : 0;
+  f.start_slip = p.start_slip;
+  f.t1 = p.t1;
+  f.t2 = p.t2;
+  f.twist = p.twist;
+}
+
+// Adds a linear impulse j (world) at a row's arm on slot `s`, turning it by `turn`.
+inline void push(Memory& m, int s, int still, const Vec3& j, const Vec3& turn) {
+  if (s == still) return;
+  m.velocity[s] += m.inverse_mass[s] * j;
+  m.angular_velocity[s] += turn;
+}
+
+// Applies a friction impulse (t1, t2, twist) on B, its opposite on A.
+inline void apply_friction(Memory& m, const Memory::FrictionRow& f, int still, const Vec3& d) {
+  const Vec3 j = d.x() * f.tangent1 + d.y() * f.tangent2;
+  push(m, f.b, still, j, d.x() * f.turn_b_t1 + d.y() * f.turn_b_t2 + d.z() * f.turn_b_n);
+  push(m, f.a, still, -j, -(d.x() * f.turn_a_t1 + d.y() * f.turn_a_t2 + d.z() * f.turn_a_n));
+}
+
+inline void apply_normal(Memory& m, const Memory::NormalRow& r, int still, Real d) {
+  push(m, r.b, still, d * r.normal, d * r.turn_b);
+  push(m, r.a, still, -d * r.normal, -d * r.turn_a);
+}
+
+// Slip (t1, t2) and spin of B over A at a friction row's centre.
+inline Vec3 slip(const Memory& m, const Memory::FrictionRow& f) {
+  const Vec3 dv = m.velocity[f.b] - m.velocity[f.a];
+  return Vec3(f.tangent1.dot(dv) + f.arm_b_x_t1.dot(m.angular_velocity[f.b]) -
+                  f.arm_a_x_t1.dot(m.angular_velocity[f.a]),
+              f.tangent2.dot(dv) + f.arm_b_x_t2.dot(m.angular_velocity[f.b]) -
+                  f.arm_a_x_t2.dot(m.angular_velocity[f.a]),
+              f.normal.dot(m.angular_velocity[f.b] - m.angular_velocity[f.a]));
+}
+
+// One patch: its normal rows, each clamped at zero, then its friction within its Coulomb limits
+// (last, so that a converged sweep leaves friction obeying its energy rule at the final
+// velocities, as in solve_semm).
+void update_patch(Memory& m, int k, int still, Real mu, SweepSize& size) {
+  Memory::FrictionRow& f = m.friction[k];
+  for (int i = f.first; i < f.last; ++i) {
+    Memory::NormalRow& r = m.rows[i];
+    const Real u = r.normal.dot(m.velocity[r.b] - m.velocity[r.a]) +
+                   r.arm_b_x_n.dot(m.angular_velocity[r.b]) -
+                   r.arm_a_x_n.dot(m.angular_velocity[r.a]);
+    const Real after = std::max<Real>(0, r.impulse - (u - r.target) * r.inverse_k);
+    const Real d = after - r.impulse;
+    r.impulse = after;
+    apply_normal(m, r, still, d);
+    size.add(std::abs(d), after);
+  }
+  if (mu > 0) {
+    Real total = 0, reach = 0;
+    for (int i = f.first; i < f.last; ++i) {
+      total += m.rows[i].impulse;
+      reach += m.rows[i].impulse * m.rows[i].lever;
+    }
+    const Vec3 before(f.t1, f.t2, f.twist);
+    Vec3 u = slip(m, f);
+    // The minimiser of the tangential block, scaled into the disc; if sticking would push along
+    // the slip the step started with, ask for that slip mirrored instead (semm.cpp: no energy
+    // added).
+    const Vec2 now(f.t1, f.t2), start = f.start_slip.head<2>();
+    Vec2 t = now - f.inverse_k_slip * u.head<2>();
+    if (t.dot(start) > 0) t = now - f.inverse_k_slip * (u.head<2>() + start);
+    const Real limit = mu * total, length = t.norm();
+    if (length > limit) t *= limit / length;
+    apply_friction(m, f, still, Vec3(t.x() - f.t1, t.y() - f.t2, 0));
+    f.t1 = t.x();
+    f.t2 = t.y();
+    if (f.inverse_k_twist > 0) {
+      const Real spin = f.normal.dot(m.angular_velocity[f.b] - m.angular_velocity[f.a]);
+      Real twist = f.twist - spin * f.inverse_k_twist;
+      if (twist * f.start_slip.z() > 0) twist = f.twist - (spin + f.start_slip.z()) * f.inverse_k_twist;
+      twist = std::clamp(twist, -mu * reach, mu * reach);
+      apply_friction(m, f, still, Vec3(0, 0, twist - f.twist));
+      f.twist = twist;
+    }
+    const Real scale = reach > 0 && total > 0 ? total / reach : 0;
+    size.add((Vec2(f.t1, f.t2) - before.head<2>()).norm() + scale * std::abs(f.twist - before.z()),
+             Vec2(f.t1, f.t2).norm());
+  }
+}
+
+SolverReport sweeps(Memory& m, const std::vector<int>& colours, const SolverSettings& settings,
+                    int still) {
+  SolverReport report;
+  m.sizes.resize(static_cast<size_t>(max_threads()));
+  for (report.sweeps = 1; report.sweeps <= settings.max_sweeps; ++report.sweeps) {
+    std::fill(m.sizes.begin(), m.sizes.end(), SweepSize{});
+    by_colour(colours, m.sizes, [&](int k, SweepSize& size) {
+      update_patch(m, k, still, settings.friction, size);
+    });
+    SweepSize total;
+    for (const SweepSize& s : m.sizes) total.add(s.change, s.largest);
+    report.change = total.largest > 0 ? total.change / total.largest : 0;
+    if (report.change <= settings.tolerance) return report;
+  }
+  report.sweeps = settings.max_sweeps;
+  report.converged = false;
+  return report;
+}
+
+// Sets the slots' pseudo velocities to the bodies' before any impulse.
+void reset_velocities(Memory& m, const std::vector<BodyResponse>& bodies) {
+  const size_t n = bodies.size();
+  for (size_t b = 0; b < n; ++b) {
+    m.velocity[b] = bodies[b].velocity;
+    m.angular_velocity[b] = bodies[b].angular_velocity;
+  }
+  m.velocity[n] = m.angular_velocity[n] = Vec3::Zero();
+}
+
+// Applies every row's current impulse (the warm start); whether any was not zero.
+bool apply_all(Memory& m, int still) {
+  bool any = false;
+  for (const Memory::NormalRow& r : m.rows) {
+    any = any || r.impulse != 0;
+    apply_normal(m, r, still, r.impulse);
+  }
+  for (const Memory::FrictionRow& f : m.friction) {
+    any = any || f.t1 != 0 || f.t2 != 0 || f.twist != 0;
+    apply_friction(m, f, still, Vec3(f.t1, f.t2, f.twist));
+  }
+  return any;
+}
+
+// Normal relative velocity of a row, and slip of a friction row, in velocity arrays v, w.
+inline Real row_velocity(const Memory::NormalRow& r, const std::vector<Vec3>& v,
+                         const std::vector<Vec3>& w) {
+  return r.normal.dot(v[r.b] - v[r.a]) + r.arm_b_x_n.dot(w[r.b]) - r.arm_a_x_n.dot(w[r.a]);
+}
+
+inline Vec3 row_slip(const Memory::FrictionRow& f, const std::vector<Vec3>& v,
+                     const std::vector<Vec3>& w) {
+  const Vec3 dv = v[f.b] - v[f.a];
+  return Vec3(f.tangent1.dot(dv) + f.arm_b_x_t1.dot(w[f.b]) - f.arm_a_x_t1.dot(w[f.a]),
+              f.tangent2.dot(dv) + f.arm_b_x_t2.dot(w[f.b]) - f.arm_a_x_t2.dot(w[f.a]),
+              f.normal.dot(w[f.b] - w[f.a]));
+}
+
+// The energy the impulses add over the step, and the scale that takes it back to none.
+//
+// Over a step an impulse j on a row does the work j (u_start + u_after) / 2 (semm.cpp), so the
+// step's energy changes by E = sum of j (u_start + u_after) / 2 over all rows, normal and
+// friction: exactly, since the velocities are linear in the impulses. At convergence every row
+// obeys the rules that make its term <= 0; stopped short of convergence (a pile's sweeps are
+// few, and a ring on a column can make Gauss-Seidel cycle), the sum can come out slightly
+// positive. Scaling every impulse by s gives E(s) = s B + s^2 A with A = 1/2 j.K j >= 0 and
+// B = E - A; the largest s with E(s) <= 0 is -B/A. Every constraint's sign survives the scaling
+// (normal impulses stay >= 0, friction inside its cone), only the push is a hair weaker.
+Real energy_scale(const Memory& m, const std::vector<BodyResponse>& bodies,
+                  const std::vector<Real>& start, std::vector<Vec3>& free_v,
+                  std::vector<Vec3>& free_w) {
+  const size_t n = bodies.size();
+  free_v.resize(n + 1);
+  free_w.resize(n + 1);
+  for (size_t b = 0; b < n; ++b) {
+    free_v[b] = bodies[b].velocity;
+    free_w[b] = bodies[b].angular_velocity;
+  }
+  free_v[n] = free_w[n] = Vec3::Zero();
+  Real added = 0, curvature = 0;
+  for (size_t r = 0; r < m.rows.size(); ++r) {
+    const Memory::NormalRow& row = m.rows[r];
+    if (row.impulse == 0) continue;
+    const Real after = row_velocity(row, m.velocity, m.angular_velocity);
+    added += row.impulse * (start[m.point_of_row[r]] + after) / 2;
+    curvature += row.impulse * (after - row_velocity(row, free_v, free_w)) / 2;
+  }
+  for (const Memory::FrictionRow& f : m.friction) {
+    const Vec3 j(f.t1, f.t2, f.twist);
+    if (j == Vec3::Zero()) continue;
+    const Vec3 after = row_slip(f, m.velocity, m.angular_velocity);
+    added += j.dot(f.start_slip + after) / 2;
+    curvature += j.dot(after - row_slip(f, free_v, free_w)) / 2;
+  }
+  if (!(added > 0)) return 1;
+  const Real linear = added - curvature;
+  return linear < 0 && curvature > 0 ? std::clamp<Real>(-linear / curvature, 0, 1) : 0;
+}
+
+}  // namespace
+
+SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
+                             const std::vector<Real>& start, const std::vector<Real>& targets,
+                             const std::vector<BodyResponse>& bodies,
+                             const std::vector<Vec3>& centres, const SolverSettings& settings,
+                             std::vector<PatchFriction>& patches,
+                             std::vector<PointImpulse>& impulses, RowSolverMemory& m) {
+  impulses.resize(points.size());
+  if (points.empty()) return SolverReport{};
+  const size_t n = bodies.size();
+  const int still = static_cast<int>(n);
+  m.velocity.resize(n + 1);
+  m.angular_velocity.resize(n + 1);
+  m.inverse_mass.resize(n + 1);
+  for (size_t b = 0; b < n; ++b) m.inverse_mass[b] = bodies[b].inverse_mass;
+  m.inverse_mass[n] = 0;
+  reset_velocities(m, bodies);
+
+  // The order of the sweeps: by colour, or patch order as one serial colour.
+  Colouring colouring;
+  if (settings.colour_sweeps) {
+    colouring = colour_patches(patches, bodies);
+  } else {
+    colouring.order.resize(patches.size());
+    for (size_t k = 0; k < patches.size(); ++k) colouring.order[k] = static_cast<int>(k);
+    colouring.start = {0, 0, static_cast<int>(patches.size())};
+  }
+  // Rows laid out in that order, each patch's contiguous; built in parallel, patch by patch.
+  const size_t n_patches = colouring.order.size();
+  m.rows.resize(points.size());
+  m.point_of_row.resize(points.size());
+  m.friction.resize(n_patches);
+  m.patch_of_friction.resize(n_patches);
+  int next = 0;
+  for (size_t j = 0; j < n_patches; ++j) {
+    const PatchFriction& p = patches[colouring.order[j]];
+    m.friction[j].first = next;
+    next += p.last - p.first;
+  }
+  parallel_for(static_cast<long long>(n_patches), 64, [&](long long j) {
+    Memory::FrictionRow& f = m.friction[j];
+    build_patch(points, targets, bodies, centres, patches[colouring.order[j]], impulses, f.first,
+                m, f);
+    if (!(settings.friction > 0)) f.t1 = f.t2 = f.twist = 0;
+    m.patch_of_friction[j] = colouring.order[j];
+  });
+
+  const bool warm = apply_all(m, still);
+  SolverReport report = sweeps(m, colouring.start, settings, still);
+  // Stopped short with more energy than no impulse at all would leave (a warm start that no
+  // longer fits): start again from zero, from where every sweep can only lower the energy.
+  if (!report.converged && warm) {
+    std::vector<BodyResponse> now = bodies;
+    for (size_t b = 0; b < n; ++b) {
+      now[b].velocity = m.velocity[b];
+      now[b].angular_velocity = m.angular_velocity[b];
+    }
+    if (pseudo_energy_change(now, bodies) > 0) {
+      reset_velocities(m, bodies);
+      for (Memory::NormalRow& r : m.rows) r.impulse = 0;
+      for (Memory::FrictionRow& f : m.friction) f.t1 = f.t2 = f.twist = 0;
+      const int first_sweeps = report.sweeps;
+      report = sweeps(m, colouring.start, settings, still);
+      report.sweeps += first_sweeps;
+    }
+  }
+  report.scale = energy_scale(m, bodies, start, m.free_velocity, m.free_angular_velocity);
+  // Results back in the caller's order.
+  for (size_t r = 0; r < m.rows.size(); ++r)
+    impulses[m.point_of_row[r]].normal = report.scale * m.rows[r].impulse;
+  for (size_t j = 0; j < n_patches; ++j) {
+    PatchFriction& p = patches[m.patch_of_friction[j]];
+    p.t1 = report.scale * m.friction[j].t1;
+    p.t2 = report.scale * m.friction[j].t2;
+    p.twist = report.scale * m.friction[j].twist;
+  }
+  return report;
+}
+
+}  // namespace tem

@@ -1,0 +1,68 @@
+// Default SEMM, one scalar row per contact point: the same convex programme as solve_semm
+// (semm.hpp: the impulses that minimise the energy at the next step, normal impulses >= 0,
+// each patch's friction inside mu times its normal impulse), solved by projected Gauss-Seidel
+// with every normal impulse a scalar of its own instead of a patch block.
+//
+// Why: a patch block (up to eight points, Lawson-Hanson at every sweep) made a step cost 20-30
+// us per patch. Here a patch has at most four points (block_manifold.hpp) and a sweep visits
+// each with a few dot products: every row's Jacobian and its response (arm x n and
+// Q (arm x n) for both bodies, the inverse of n.K n) is computed once per step, each body's
+// pseudo velocity kept in one flat array with one still slot for walls and fixed bodies. What
+// scalar rows give up is the exact answer of a patch's coupled points within one sweep (a tall
+// column rocking on its end); warm starting from the last step's impulses carries that
+// convergence from step to step, as Box2D, Box3D and Jolt do.
+//
+// Order: each patch's normal rows, then its friction (2x2 tangential block and twist, with the
+// start-of-step energy rule of semm.cpp), patch after patch; with colour_sweeps the patches go
+// colour by colour and threads share a colour (patch_colouring.hpp), the same bits at any thread
+// count. Rows are built and laid out in that order, contiguous per patch, in memory reused from
+// step to step: nothing is allocated once the pile's size has been seen.
+#pragma once
+
+#include <vector>
+
+#include "forces/patch_colouring.hpp"
+#include "forces/semm.hpp"
+
+namespace tem {
+
+// The solver's memory, kept between steps so that a running pile allocates nothing.
+struct RowSolverMemory {
+  struct NormalRow {
+    int a = 0, b = 0;  // body slots (the still slot for walls and fixed bodies)
+    Vec3 normal, arm_a_x_n, arm_b_x_n, turn_a, turn_b;  // turn = Q (arm x n)
+    Real inverse_k = 0, target = 0, impulse = 0, lever = 0;  // lever: distance to the centre
+  };
+  struct FrictionRow {
+    int a = 0, b = 0;
+    int first = 0, last = 0;  // its normal rows
+    Vec3 tangent1, tangent2, normal;
+    Vec3 arm_a_x_t1, arm_a_x_t2, arm_b_x_t1, arm_b_x_t2;
+    Vec3 turn_a_t1, turn_a_t2, turn_b_t1, turn_b_t2, turn_a_n, turn_b_n;
+    Eigen::Matrix<Real, 2, 2> inverse_k_slip;
+    Real inverse_k_twist = 0;  // 0: no twist row (both sides without rotation)
+    Vec3 start_slip;
+    Real t1 = 0, t2 = 0, twist = 0;
+  };
+  std::vector<Vec3> velocity, angular_velocity;  // pseudo velocities per slot
+  std::vector<Real> inverse_mass;
+  std::vector<NormalRow> rows;
+  std::vector<FrictionRow> friction;
+  std::vector<int> point_of_row, patch_of_friction;
+  std::vector<SweepSize> sizes;
+  std::vector<Vec3> free_velocity, free_angular_velocity;  // energy check (semm_rows.cpp)
+};
+
+// Default SEMM with scalar normal rows. `start` is each point's normal relative velocity at the
+// start of the step, `targets` from normal_targets(); `patches` and `impulses` hold the warm
+// start on entry and the result on return, as for solve_semm. Should the sweeps stop short with
+// impulses that would add energy over the step, all are scaled down until they add none
+// (report.scale < 1).
+SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
+                             const std::vector<Real>& start, const std::vector<Real>& targets,
+                             const std::vector<BodyResponse>& bodies,
+                             const std::vector<Vec3>& centres, const SolverSettings& settings,
+                             std::vector<PatchFriction>& patches,
+                             std::vector<PointImpulse>& impulses, RowSolverMemory& memory);
+
+}  // namespace tem
