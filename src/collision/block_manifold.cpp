@@ -9,20 +9,6 @@ namespace {
 
 constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 
-// World nodes and face planes of a block.
-void to_world(const Block& block, const BlockPose& pose, std::vector<Vec3>& nodes,
-              std::vector<Vec3>& normals, std::vector<Real>& offsets) {
-  nodes.resize(block.nodes().size());
-  for (size_t i = 0; i < nodes.size(); ++i) nodes[i] = pose.to_world(block.nodes()[i]);
-  const std::vector<Polygon>& polygons = block.polygons();
-  normals.resize(polygons.size());
-  offsets.resize(polygons.size());
-  for (size_t f = 0; f < polygons.size(); ++f) {
-    normals[f] = pose.rotation * polygons[f].normal;
-    offsets[f] = normals[f].dot(nodes[polygons[f].nodes[0]]);
-  }
-}
-
 struct FaceAxis {
   Real separation = -kInfinity;
   int face = -1;
@@ -50,44 +36,28 @@ struct EdgeAxis {
   int edge_a = -1, edge_b = -1;
 };
 
-// Whether the arcs a-b and c-d on the unit sphere cross (b_x_a = b x a, d_x_c = d x c): the
-// edges with these adjacent face normals (c, d those of B, negated) build a face of the
-// Minkowski difference, the only edge pairs whose cross product can be a separating axis.
-bool minkowski_face(const Vec3& a, const Vec3& b, const Vec3& b_x_a, const Vec3& c, const Vec3& d,
-                    const Vec3& d_x_c) {
-  const Real cba = c.dot(b_x_a), dba = d.dot(b_x_a);
-  const Real adc = a.dot(d_x_c), bdc = b.dot(d_x_c);
-  return cba * dba < 0 && adc * bdc < 0 && cba * bdc > 0;
-}
-
-EdgeAxis best_edges(const Block& a, const BlockPose& pose_a, const Block& b,
-                    const ManifoldScratch& s, Real margin) {
+// The edge pairs whose cross product is a candidate axis: those whose arcs cross on the Gauss
+// map, A's arc against B's negated (minkowski_face with c, d = -n1, -n2 of B, d x c = B's arc).
+EdgeAxis best_edges(const WorldBlock& a, const WorldBlock& b, Real margin) {
   EdgeAxis best;
-  const std::vector<Edge>& edges_a = a.edges();
-  const std::vector<Edge>& edges_b = b.edges();
-  for (size_t i = 0; i < edges_a.size(); ++i) {
-    const Edge& ea = edges_a[i];
-    if (!ea.polygon_boundary) continue;
-    const Vec3& na1 = s.normals_a[a.triangles()[ea.triangles[0]].polygon];
-    const Vec3& na2 = s.normals_a[a.triangles()[ea.triangles[1]].polygon];
-    const Vec3 na_x = na2.cross(na1);
-    const Vec3& pa = s.nodes_a[ea.nodes[0]];
-    const Vec3 da = s.nodes_a[ea.nodes[1]] - pa;
-    for (size_t j = 0; j < edges_b.size(); ++j) {
-      const Edge& eb = edges_b[j];
-      if (!eb.polygon_boundary) continue;
-      const Vec3 nb1 = -s.normals_b[b.triangles()[eb.triangles[0]].polygon];
-      const Vec3 nb2 = -s.normals_b[b.triangles()[eb.triangles[1]].polygon];
-      if (!minkowski_face(na1, na2, na_x, nb1, nb2, nb2.cross(nb1))) continue;
-      const Vec3& pb = s.nodes_b[eb.nodes[0]];
-      const Vec3 db = s.nodes_b[eb.nodes[1]] - pb;
+  const size_t na = a.edge_node.size(), nb = b.edge_node.size();
+  for (size_t i = 0; i < na; ++i) {
+    const Vec3 &a1 = a.edge_n1[i], &a2 = a.edge_n2[i], &arc_a = a.edge_arc[i];
+    const Vec3& pa = a.nodes[a.edge_node[i]];
+    const Vec3& da = a.edge_direction[i];
+    for (size_t j = 0; j < nb; ++j) {
+      const Real cba = -b.edge_n1[j].dot(arc_a), dba = -b.edge_n2[j].dot(arc_a);
+      if (!(cba * dba < 0)) continue;
+      const Real adc = a1.dot(b.edge_arc[j]), bdc = a2.dot(b.edge_arc[j]);
+      if (!(adc * bdc < 0 && cba * bdc > 0)) continue;
+      const Vec3& db = b.edge_direction[j];
       Vec3 axis = da.cross(db);
       const Real length = axis.norm();
       // Parallel edges: their cross product is no axis (a face axis covers that case).
       if (length <= 1e-6 * da.norm() * db.norm()) continue;
       axis /= length;
-      if (axis.dot(pa - pose_a.position) < 0) axis = -axis;  // out of A
-      const Real sep = axis.dot(pb - pa);
+      if (axis.dot(pa - a.centre) < 0) axis = -axis;  // out of A
+      const Real sep = axis.dot(b.nodes[b.edge_node[j]] - pa);
       if (sep > best.separation) {
         best = {sep, axis, static_cast<int>(i), static_cast<int>(j)};
         if (sep > margin) return best;
@@ -172,6 +142,34 @@ void clip_faces(const Block& ref, const std::vector<Vec3>& ref_nodes, const Vec3
 
 }  // namespace
 
+void place_block(const Block& block, const BlockPose& pose, WorldBlock& out) {
+  out.centre = pose.position;
+  out.nodes.resize(block.nodes().size());
+  for (size_t i = 0; i < out.nodes.size(); ++i) out.nodes[i] = pose.to_world(block.nodes()[i]);
+  const std::vector<Polygon>& polygons = block.polygons();
+  out.normals.resize(polygons.size());
+  out.offsets.resize(polygons.size());
+  for (size_t f = 0; f < polygons.size(); ++f) {
+    out.normals[f] = pose.rotation * polygons[f].normal;
+    out.offsets[f] = out.normals[f].dot(out.nodes[polygons[f].nodes[0]]);
+  }
+  out.edge_node.clear();
+  out.edge_direction.clear();
+  out.edge_n1.clear();
+  out.edge_n2.clear();
+  out.edge_arc.clear();
+  for (const Edge& e : block.edges()) {
+    if (!e.polygon_boundary) continue;
+    const Vec3& n1 = out.normals[block.triangles()[e.triangles[0]].polygon];
+    const Vec3& n2 = out.normals[block.triangles()[e.triangles[1]].polygon];
+    out.edge_node.push_back(e.nodes[0]);
+    out.edge_direction.push_back(out.nodes[e.nodes[1]] - out.nodes[e.nodes[0]]);
+    out.edge_n1.push_back(n1);
+    out.edge_n2.push_back(n2);
+    out.edge_arc.push_back(n2.cross(n1));
+  }
+}
+
 int reduce_points(const Vec3& normal, const Vec3* points, const Real* gaps, int count,
                   std::array<int, kManifoldPoints>& kept) {
   if (count <= kManifoldPoints) {
@@ -208,16 +206,18 @@ int reduce_points(const Vec3& normal, const Vec3* points, const Real* gaps, int 
   return n;
 }
 
-bool block_manifold(const Block& a, const BlockPose& pose_a, const Block& b,
-                    const BlockPose& pose_b, Real margin, ManifoldScratch& s, Manifold& out) {
+bool block_manifold(const Block& a, const WorldBlock& wa, const Block& b, const WorldBlock& wb,
+                    Real margin, ManifoldScratch& s, Manifold& out) {
   out.count = 0;
-  to_world(a, pose_a, s.nodes_a, s.normals_a, s.offsets_a);
-  to_world(b, pose_b, s.nodes_b, s.normals_b, s.offsets_b);
-  const FaceAxis face_a = best_face(s.normals_a, s.offsets_a, s.nodes_b, margin);
+  // Bounding spheres first: the broad phase's boxes of turned blocks pass many pairs whose
+  // spheres are apart, and the axes cost a hundred times more.
+  const Real reach = a.bounding_radius() + b.bounding_radius() + margin;
+  if ((wa.centre - wb.centre).squaredNorm() > reach * reach) return false;
+  const FaceAxis face_a = best_face(wa.normals, wa.offsets, wb.nodes, margin);
   if (face_a.separation > margin) return false;
-  const FaceAxis face_b = best_face(s.normals_b, s.offsets_b, s.nodes_a, margin);
+  const FaceAxis face_b = best_face(wb.normals, wb.offsets, wa.nodes, margin);
   if (face_b.separation > margin) return false;
-  const EdgeAxis edges = best_edges(a, pose_a, b, s, margin);
+  const EdgeAxis edges = best_edges(wa, wb, margin);
   if (edges.separation > margin) return false;
 
   // Faces are preferred within a tolerance: they give whole patches, and a choice that flips
@@ -227,12 +227,10 @@ bool block_manifold(const Block& a, const BlockPose& pose_a, const Block& b,
   std::vector<Vec3>& candidates = s.candidates;
   std::vector<Real>& gaps = s.candidate_gaps;
   if (edges.edge_a >= 0 && edges.separation > face_best + tolerance) {
-    const Edge& ea = a.edges()[edges.edge_a];
-    const Edge& eb = b.edges()[edges.edge_b];
-    const Vec3& pa = s.nodes_a[ea.nodes[0]];
-    const Vec3& pb = s.nodes_b[eb.nodes[0]];
-    const auto [ca, cb] = closest_points(pa, s.nodes_a[ea.nodes[1]] - pa, pb,
-                                         s.nodes_b[eb.nodes[1]] - pb);
+    const Vec3& pa = wa.nodes[wa.edge_node[edges.edge_a]];
+    const Vec3& pb = wb.nodes[wb.edge_node[edges.edge_b]];
+    const auto [ca, cb] =
+        closest_points(pa, wa.edge_direction[edges.edge_a], pb, wb.edge_direction[edges.edge_b]);
     out.normal = edges.axis;
     out.count = 1;
     out.point[0] = 0.5 * (ca + cb);
@@ -240,28 +238,34 @@ bool block_manifold(const Block& a, const BlockPose& pose_a, const Block& b,
     return true;
   }
   if (face_b.separation > face_a.separation + tolerance) {
-    clip_faces(b, s.nodes_b, s.normals_b[face_b.face], s.offsets_b[face_b.face], face_b.face, a,
-               s.nodes_a, s.normals_a, margin, s, candidates, gaps);
-    out.normal = -s.normals_b[face_b.face];
+    clip_faces(b, wb.nodes, wb.normals[face_b.face], wb.offsets[face_b.face], face_b.face, a,
+               wa.nodes, wa.normals, margin, s, candidates, gaps);
+    out.normal = -wb.normals[face_b.face];
   } else {
-    clip_faces(a, s.nodes_a, s.normals_a[face_a.face], s.offsets_a[face_a.face], face_a.face, b,
-               s.nodes_b, s.normals_b, margin, s, candidates, gaps);
-    out.normal = s.normals_a[face_a.face];
+    clip_faces(a, wa.nodes, wa.normals[face_a.face], wa.offsets[face_a.face], face_a.face, b,
+               wb.nodes, wb.normals, margin, s, candidates, gaps);
+    out.normal = wa.normals[face_a.face];
   }
   if (candidates.empty()) return false;
   keep(candidates, gaps, out);
   return true;
 }
 
-bool wall_manifold(const Block& block, const BlockPose& pose, const Vec3& wall_point,
+bool block_manifold(const Block& a, const BlockPose& pose_a, const Block& b,
+                    const BlockPose& pose_b, Real margin, ManifoldScratch& s, Manifold& out) {
+  place_block(a, pose_a, s.a);
+  place_block(b, pose_b, s.b);
+  return block_manifold(a, s.a, b, s.b, margin, s, out);
+}
+
+bool wall_manifold(const Block& block, const WorldBlock& world, const Vec3& wall_point,
                    const Vec3& wall_normal, Real margin, ManifoldScratch& s, Manifold& out) {
   out.count = 0;
-  to_world(block, pose, s.nodes_a, s.normals_a, s.offsets_a);
   const Real offset = wall_normal.dot(wall_point);
   int deepest = 0;
   Real deepest_gap = kInfinity;
-  for (size_t i = 0; i < s.nodes_a.size(); ++i) {
-    const Real gap = wall_normal.dot(s.nodes_a[i]) - offset;
+  for (size_t i = 0; i < world.nodes.size(); ++i) {
+    const Real gap = wall_normal.dot(world.nodes[i]) - offset;
     if (gap < deepest_gap) {
       deepest_gap = gap;
       deepest = static_cast<int>(i);
@@ -270,8 +274,8 @@ bool wall_manifold(const Block& block, const BlockPose& pose, const Vec3& wall_p
   if (deepest_gap > margin) return false;
   int incident = 0;
   Real most_opposed = kInfinity;
-  for (size_t f = 0; f < s.normals_a.size(); ++f) {
-    const Real d = s.normals_a[f].dot(wall_normal);
+  for (size_t f = 0; f < world.normals.size(); ++f) {
+    const Real d = world.normals[f].dot(wall_normal);
     if (d < most_opposed) {
       most_opposed = d;
       incident = static_cast<int>(f);
@@ -283,7 +287,7 @@ bool wall_manifold(const Block& block, const BlockPose& pose, const Vec3& wall_p
   gaps.clear();
   bool has_deepest = false;
   auto add = [&](int node) {
-    const Vec3& p = s.nodes_a[node];
+    const Vec3& p = world.nodes[node];
     const Real gap = wall_normal.dot(p) - offset;
     if (gap > margin) return;
     candidates.push_back(p - 0.5 * gap * wall_normal);
@@ -297,6 +301,12 @@ bool wall_manifold(const Block& block, const BlockPose& pose, const Vec3& wall_p
   out.normal = -wall_normal;
   keep(candidates, gaps, out);
   return out.count > 0;
+}
+
+bool wall_manifold(const Block& block, const BlockPose& pose, const Vec3& wall_point,
+                   const Vec3& wall_normal, Real margin, ManifoldScratch& s, Manifold& out) {
+  place_block(block, pose, s.a);
+  return wall_manifold(block, s.a, wall_point, wall_normal, margin, s, out);
 }
 
 }  // namespace tem

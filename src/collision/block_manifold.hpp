@@ -38,17 +38,32 @@ struct Manifold {
   std::array<Real, kManifoldPoints> gap{};    // > 0 apart, < 0 overlapping
 };
 
+// A block placed in the world for one step: what every pair it is in reads, computed once.
+struct WorldBlock {
+  Vec3 centre = Vec3::Zero();  // the block's centroid
+  std::vector<Vec3> nodes;     // world
+  std::vector<Vec3> normals;   // world outward polygon normals
+  std::vector<Real> offsets;   // world planes: normal . x = offset
+  // The edges between two polygons (not the diagonals inside one): end node, direction, the
+  // normals n1, n2 of the two polygons and n2 x n1 (the Gauss-map arc of the edge).
+  std::vector<int> edge_node;
+  std::vector<Vec3> edge_direction, edge_n1, edge_n2, edge_arc;
+};
+
+void place_block(const Block& block, const BlockPose& pose, WorldBlock& out);
+
 // Reused memory of one thread.
 struct ManifoldScratch {
-  std::vector<Vec3> nodes_a, nodes_b;  // world
-  std::vector<Vec3> normals_a, normals_b;  // world outward polygon normals
-  std::vector<Real> offsets_a, offsets_b;  // world planes: normal . x = offset
+  WorldBlock a, b;  // for the overloads that take poses
   std::vector<Vec3> clip_in, clip_out;
   std::vector<Vec3> candidates;  // points within the margin, before reduce_points
   std::vector<Real> candidate_gaps;
 };
 
 // The patch of two convex blocks whose gap is below `margin` (false, and count 0, otherwise).
+bool block_manifold(const Block& a, const WorldBlock& world_a, const Block& b,
+                    const WorldBlock& world_b, Real margin, ManifoldScratch& scratch,
+                    Manifold& out);
 bool block_manifold(const Block& a, const BlockPose& pose_a, const Block& b,
                     const BlockPose& pose_b, Real margin, ManifoldScratch& scratch,
                     Manifold& out);
@@ -56,6 +71,8 @@ bool block_manifold(const Block& a, const BlockPose& pose_a, const Block& b,
 // The patch of a convex block and a wall plane (normal into the space where bodies live; the
 // patch normal is then -wall_normal): the corners of the block's face most opposed to the wall,
 // and its deepest node, within `margin` of the plane.
+bool wall_manifold(const Block& block, const WorldBlock& world, const Vec3& wall_point,
+                   const Vec3& wall_normal, Real margin, ManifoldScratch& scratch, Manifold& out);
 bool wall_manifold(const Block& block, const BlockPose& pose, const Vec3& wall_point,
                    const Vec3& wall_normal, Real margin, ManifoldScratch& scratch, Manifold& out);
 

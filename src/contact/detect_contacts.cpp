@@ -61,6 +61,13 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
   const long long runs = (n_all + kRun - 1) / kRun;
   w.threads.resize(static_cast<size_t>(max_threads()));
   const bool ahead = !w.reach.empty();
+  if (ahead) {
+    // Each block's world nodes, planes and edges once, for all the pairs it is in.
+    w.world.resize(proxies.size());
+    parallel_for(static_cast<long long>(proxies.size()), 256, [&](long long i) {
+      place_block(block_of(static_cast<int>(i)), poses[i], w.world[i]);
+    });
+  }
 
   // Tests items [begin, end) in order, appending their patches to `out`.
   auto test_items = [&](long long begin, long long end, PairScratch& s,
@@ -73,8 +80,8 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
         if (ahead) {
           const int body_a = proxies[pair.a].body, body_b = proxies[pair.b].body;
           Manifold m;
-          if (block_manifold(a, poses[pair.a], b, poses[pair.b], w.reach[body_a] + w.reach[body_b],
-                             s.manifold, m)) {
+          if (block_manifold(a, w.world[pair.a], b, w.world[pair.b],
+                             w.reach[body_a] + w.reach[body_b], s.manifold, m)) {
             out.push_back(manifold_patch(m));
             out.back().body_a = body_a;
             out.back().body_b = body_b;
@@ -94,7 +101,7 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
         if (ahead) {
           const int body = proxies[pair.proxy].body;
           Manifold m;
-          if (wall_manifold(block, poses[pair.proxy], wall.point, wall.normal, 2 * w.reach[body],
+          if (wall_manifold(block, w.world[pair.proxy], wall.point, wall.normal, 2 * w.reach[body],
                             s.manifold, m)) {
             out.push_back(manifold_patch(m));
             out.back().body_a = body;

@@ -32,6 +32,7 @@ struct ContactWorkspace {
   // Per body, how far ahead of overlap it makes contact (contact_margins.hpp); empty: contact
   // only after overlap, by the paper's tests.
   std::vector<Real> reach;
+  std::vector<WorldBlock> world;  // every block placed for this step (contact before overlap)
 };
 
 // Narrow phase and patches for the pairs of the workspace's last broad-phase update: with the

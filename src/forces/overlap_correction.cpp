@@ -11,7 +11,7 @@ constexpr Real kSlop = 1e-4;  // of the body's size: overlap left alone
 
 }  // namespace
 
-CorrectionReport correct_overlap(const Model& model, const ContactForces& f, Real energy_before,
+CorrectionReport correct_overlap(const Model& model, ContactForces& f, Real energy_before,
                                  State& state) {
   CorrectionReport report;
   if (f.points.empty()) return report;
@@ -46,7 +46,9 @@ CorrectionReport correct_overlap(const Model& model, const ContactForces& f, Rea
   stopping.tolerance = model.scene.contact.tolerance;
   stopping.max_sweeps = model.scene.contact.max_sweeps;
   stopping.colour_sweeps = model.scene.contact.colour_sweeps;
-  solve_separation(f.points, targets, still, f.centres, f.friction, moved, stopping);
+  // The scalar-row solver where the step used it (its memory is free again by now).
+  RowSolverMemory* rows = model.scene.contact.solver == ContactSolver::rows ? &f.rows : nullptr;
+  solve_separation(f.points, targets, still, f.centres, f.friction, moved, stopping, rows);
 
   // The potential energy the move costs, against what the step dissipated.
   Real lift = 0;

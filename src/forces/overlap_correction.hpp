@@ -22,7 +22,7 @@ struct CorrectionReport {
 
 // After integration: `energy_before` is the system's energy at the start of the step, `forces`
 // the step's contact forces (points, responses, centres, patches).
-CorrectionReport correct_overlap(const Model& model, const ContactForces& forces,
+CorrectionReport correct_overlap(const Model& model, ContactForces& forces,
                                  Real energy_before, State& state);
 
 }  // namespace tem

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "forces/patch_colouring.hpp"
+#include "forces/semm_rows.hpp"
 #include "world/parallel.hpp"
 
 namespace tem {
@@ -512,7 +513,7 @@ SolverReport solve_separation(const std::vector<ContactPoint>& points,
                               const std::vector<Vec3>& centres,
                               std::vector<PatchFriction> patches,
                               std::vector<BodyResponse>& velocities,
-                              const SolverSettings& stopping) {
+                              const SolverSettings& stopping, RowSolverMemory* rows) {
   SolverSettings settings;
   settings.friction = 0;
   settings.tolerance = stopping.tolerance;
@@ -520,6 +521,16 @@ SolverReport solve_separation(const std::vector<ContactPoint>& points,
   settings.colour_sweeps = stopping.colour_sweeps;
   std::vector<PointImpulse> impulses(points.size());
   for (PatchFriction& p : patches) p.t1 = p.t2 = p.twist = 0;
+  if (rows) {
+    const SolverReport report = solve_semm_rows(points, {}, targets, bodies, centres, settings,
+                                                patches, impulses, *rows);
+    velocities = bodies;
+    for (size_t b = 0; b < bodies.size(); ++b) {
+      velocities[b].velocity = rows->velocity[b];
+      velocities[b].angular_velocity = rows->angular_velocity[b];
+    }
+    return report;
+  }
   return solve_targets(points, targets, bodies, centres, settings, patches, impulses,
                        velocities);
 }

@@ -24,6 +24,8 @@
 
 namespace tem {
 
+struct RowSolverMemory;
+
 // Normal impulse at one contact point: on B along +normal, on A along -normal.
 struct PointImpulse {
   Real normal = 0;
@@ -95,14 +97,16 @@ SolverReport solve_semm(const std::vector<ContactPoint>& points, const std::vect
 
 // The pseudo velocities (`velocities`: the bodies' with their own set to zero on entry, their
 // result on return) that separate the points at the given normal speeds, impulses >= 0, no
-// friction: what the overlap correction moves the bodies by.
+// friction: what the overlap correction moves the bodies by. With `rows`, by the scalar-row
+// solver (semm_rows.hpp) in that memory, else by patch blocks.
 SolverReport solve_separation(const std::vector<ContactPoint>& points,
                               const std::vector<Real>& targets,
                               const std::vector<BodyResponse>& bodies,
                               const std::vector<Vec3>& centres,
                               std::vector<PatchFriction> patches,
                               std::vector<BodyResponse>& velocities,
-                              const SolverSettings& stopping = SolverSettings{});
+                              const SolverSettings& stopping = SolverSettings{},
+                              RowSolverMemory* rows = nullptr);
 
 // The paper's unconstrained normal-only SEMM: K S = D, solved directly.
 SolverReport solve_semm_paper(const std::vector<ContactPoint>& points,

@@ -306,7 +306,7 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
   SolverReport report = sweeps(m, colouring.start, settings, still);
   // Stopped short with more energy than no impulse at all would leave (a warm start that no
   // longer fits): start again from zero, from where every sweep can only lower the energy.
-  if (!report.converged && warm) {
+  if (!report.converged && warm && !start.empty()) {
     std::vector<BodyResponse> now = bodies;
     for (size_t b = 0; b < n; ++b) {
       now[b].velocity = m.velocity[b];
@@ -321,7 +321,8 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
       report.sweeps += first_sweeps;
     }
   }
-  report.scale = energy_scale(m, bodies, start, m.free_velocity, m.free_angular_velocity);
+  if (!start.empty())
+    report.scale = energy_scale(m, bodies, start, m.free_velocity, m.free_angular_velocity);
   // Results back in the caller's order.
   for (size_t r = 0; r < m.rows.size(); ++r)
     impulses[m.point_of_row[r]].normal = report.scale * m.rows[r].impulse;

@@ -57,7 +57,8 @@ struct RowSolverMemory {
 // start of the step, `targets` from normal_targets(); `patches` and `impulses` hold the warm
 // start on entry and the result on return, as for solve_semm. Should the sweeps stop short with
 // impulses that would add energy over the step, all are scaled down until they add none
-// (report.scale < 1).
+// (report.scale < 1). An empty `start` skips that check (the overlap correction's solve, whose
+// result is a move, not impulses); the slots' velocities are left in `memory` either way.
 SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
                              const std::vector<Real>& start, const std::vector<Real>& targets,
                              const std::vector<BodyResponse>& bodies,
