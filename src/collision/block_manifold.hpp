@@ -58,6 +58,7 @@ struct ManifoldScratch {
   std::vector<Vec3> clip_in, clip_out;
   std::vector<Vec3> candidates;  // points within the margin, before reduce_points
   std::vector<Real> candidate_gaps;
+  std::vector<int> edge_list;  // B's edges that may face A
 };
 
 // The patch of two convex blocks whose gap is below `margin` (false, and count 0, otherwise).
