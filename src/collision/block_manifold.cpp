@@ -38,23 +38,25 @@ struct EdgeAxis {
 
 // The edge pairs whose cross product is a candidate axis: those whose arcs cross on the Gauss
 // map, A's arc against B's negated (Gregorius's Minkowski-face test with c, d = -n1, -n2 of B,
-// d x c = B's arc). When the blocks are already known to be apart (`apart`: a face axis
-// separates them), the axis L of a better edge pair separates them by more, so
-// L.(centre B - centre A) >= that separation > 0 for any points of the blocks, the centroids
-// too; L lies in the arc of its edge of A, so an edge of A whose two faces both turn away from B
-// (and likewise of B) cannot give it, and is skipped.
-EdgeAxis best_edges(const WorldBlock& a, const WorldBlock& b, Real margin, bool apart,
+// d x c = B's arc). Only an edge axis L that separates the blocks by more than the best face
+// axis, `floor`, matters, and then L.(centre B - centre A) > floor, the centroids being points
+// of the blocks. L lies in the arc of its edge of A, a positive combination of the edge's two
+// face normals n1, n2 normalised, so L.d <= max(n1.d, n2.d) where that is <= 0: an edge of A
+// whose faces give max(n1.d, n2.d) <= min(0, floor) cannot give it, and is skipped (and the
+// same for B's edges with d reversed).
+EdgeAxis best_edges(const WorldBlock& a, const WorldBlock& b, Real margin, Real floor,
                     std::vector<int>& b_edges) {
   EdgeAxis best;
   const Vec3 towards_b = b.centre - a.centre;
   const size_t na = a.edge_node.size(), nb = b.edge_node.size();
   b_edges.clear();
+  const Real skip = std::min<Real>(0, floor);
   for (size_t j = 0; j < nb; ++j)
-    if (!apart || b.edge_n1[j].dot(towards_b) < 0 || b.edge_n2[j].dot(towards_b) < 0)
+    if (std::max(-b.edge_n1[j].dot(towards_b), -b.edge_n2[j].dot(towards_b)) > skip)
       b_edges.push_back(static_cast<int>(j));
   for (size_t i = 0; i < na; ++i) {
     const Vec3 &a1 = a.edge_n1[i], &a2 = a.edge_n2[i], &arc_a = a.edge_arc[i];
-    if (apart && a1.dot(towards_b) <= 0 && a2.dot(towards_b) <= 0) continue;
+    if (std::max(a1.dot(towards_b), a2.dot(towards_b)) <= skip) continue;
     const Vec3& pa = a.nodes[a.edge_node[i]];
     const Vec3& da = a.edge_direction[i];
     for (const int j : b_edges) {
@@ -229,9 +231,8 @@ bool block_manifold(const Block& a, const WorldBlock& wa, const Block& b, const 
   if (face_a.separation > margin) return false;
   const FaceAxis face_b = best_face(wb.normals, wb.offsets, wa.nodes, margin);
   if (face_b.separation > margin) return false;
-  const EdgeAxis edges = best_edges(wa, wb, margin,
-                                    std::max(face_a.separation, face_b.separation) >= 0,
-                                    s.edge_list);
+  const EdgeAxis edges =
+      best_edges(wa, wb, margin, std::max(face_a.separation, face_b.separation), s.edge_list);
   if (edges.separation > margin) return false;
 
   // Faces are preferred within a tolerance: they give whole patches, and a choice that flips
