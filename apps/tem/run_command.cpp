@@ -31,14 +31,14 @@ void print_summary(const Model& model, const State& state, const Workspace& w, d
                "  per step: broad phase %.2f us, narrow phase + patches %.2f us, forces %.2f us, "
                "integration %.2f us\n"
                "  contact solver: %.2f sweeps per step on average, %d at most, %lld steps "
-               "unconverged\n"
+               "unconverged, %lld scaled to add no energy\n"
                "  contacts: %.1f patches and %.1f points per step on average, %.2f us per patch "
                "(all stages)\n"
                "  final energy: kinetic %.9g, potential %.9g, total %.9g\n",
                t.steps, state.time, wall, t.steps / std::max(wall, 1e-9), 1e6 * wall / steps,
                1e6 * t.broad_phase / steps, 1e6 * t.narrow_phase / steps, 1e6 * t.forces / steps,
                1e6 * t.integrate / steps, static_cast<double>(t.sweeps) / steps, t.max_sweeps,
-               t.unconverged_steps, t.patches / steps, t.points / steps,
+               t.unconverged_steps, t.scaled_steps, t.patches / steps, t.points / steps,
                t.patches > 0 ? 1e6 * wall / static_cast<double>(t.patches) : 0.0, e.kinetic,
                e.potential, e.total());
   if (t.outran_margin > 0)

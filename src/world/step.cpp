@@ -81,6 +81,7 @@ void advance(const Model& model, State& state, Workspace& w) {
   w.times.sweeps += w.forces.solver.sweeps;
   w.times.max_sweeps = std::max(w.times.max_sweeps, w.forces.solver.sweeps);
   if (!w.forces.solver.converged) ++w.times.unconverged_steps;
+  if (w.forces.solver.scale < 1) ++w.times.scaled_steps;
 }
 
 Energies system_energies(const Model& model, const State& state) {

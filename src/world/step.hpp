@@ -22,6 +22,7 @@ struct StageTimes {
   int max_sweeps = 0;
   long long sweeps = 0;
   long long unconverged_steps = 0;
+  long long scaled_steps = 0;  // steps whose impulses were scaled down to add no energy
   long long corrected_steps = 0;  // steps whose overlap correction moved bodies
   long long outran_margin = 0;    // bodies that moved farther in a step than their reach
   long long patches = 0;          // contact patches and points, summed over the steps
