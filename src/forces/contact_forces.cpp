@@ -18,8 +18,13 @@ Vec3 start_spin(const Model& model, const State& state, int body) {
 void start_velocities(const Model& model, const State& state,
                       const std::vector<ContactPatch>& patches, ContactForces& f) {
   f.approach.resize(f.points.size());
+  f.approach_linear.resize(f.points.size());
+  auto centre_velocity = [&](int body) {
+    return body < 0 || model.bodies[body].fixed ? Vec3::Zero() : state.bodies[body].v;
+  };
   for (size_t i = 0; i < f.points.size(); ++i) {
     const ContactPoint& c = f.points[i];
+    f.approach_linear[i] = c.normal.dot(centre_velocity(c.body_b) - centre_velocity(c.body_a));
     f.approach[i] = c.normal.dot(material_point_velocity(model, state, c.body_b, c.point) -
                                  material_point_velocity(model, state, c.body_a, c.point));
   }
@@ -108,7 +113,7 @@ void compute_contact_forces(const Model& model, const State& state,
     warm_start(f.previous_points, f.previous_impulses, f.points, f.match_radius, f.impulses);
     warm_start_friction(f.previous_friction, f.match_radius, f.friction);
     if (scene.contact.solver == ContactSolver::rows) {
-      normal_targets(f.points, f.approach, settings, f.targets);
+      normal_targets(f.points, f.approach, f.approach_linear, settings, f.targets);
       f.solver = solve_semm_rows(f.points, f.approach, f.targets, f.responses, f.centres, settings,
                                  f.friction, f.impulses, f.rows);
     } else {

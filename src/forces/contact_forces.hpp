@@ -27,6 +27,7 @@ struct ContactForces {
   std::vector<BodyResponse> responses;
   std::vector<Vec3> centres;
   std::vector<Real> approach;  // normal relative velocity at each point at the step's start
+  std::vector<Real> approach_linear;  // its part from the centres' velocities alone
   std::vector<Real> targets;   // normal relative velocity each point asks for after the step
   std::vector<PatchFriction> friction;  // one per patch (default SEMM)
   RowSolverMemory rows;                 // the scalar-row solver's memory

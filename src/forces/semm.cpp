@@ -450,7 +450,8 @@ SolverReport solve_targets(const std::vector<ContactPoint>& points,
 }  // namespace
 
 void normal_targets(const std::vector<ContactPoint>& points, const std::vector<Real>& start,
-                    const SolverSettings& settings, std::vector<Real>& targets) {
+                    const std::vector<Real>& start_linear, const SolverSettings& settings,
+                    std::vector<Real>& targets) {
   // The normal relative velocity required after the step. An impact (approach faster than the
   // threshold) leaves at e times its approach speed; resting contact must not approach; a point
   // already separating may close again as fast as it was opening, no faster. Why the last: over
@@ -459,20 +460,23 @@ void normal_targets(const std::vector<ContactPoint>& points, const std::vector<R
   // adds none, and impacts and resting contacts only take energy out.
   //
   // A point still a gap s apart (contact before overlap) must not close past zero. The default
-  // integrator drifts by the mean of the step's start and end velocities (a contact force held
-  // through the step, integrator_default.cpp), so a point closes by dt (c + c')/2 when it
-  // approaches at c at the start and c' at the end: one that arrives too fast for its gap could
-  // only stop at once by bouncing back. So it brakes one step ahead: it asks to end the step
-  // approaching at no more than c' = s/dt - c/2, which leaves a gap s' with exactly c' = 2 s'/dt,
-  // and the next step stops it at zero velocity and zero gap, so it lands within two steps, at
-  // rest, without overlap and without a bounce (where the margin saw it coming: it is at least
-  // twice a step's motion, contact_margins.hpp). A point still far pushes nothing: its free
-  // approach never exceeds what it asks. An impact with restitution (approach above the
-  // threshold) instead leaves at e c in the step after which a braked landing could no longer
-  // hold it, s < c dt (3 - e)/2: at its full approach speed (braking first would eat the
-  // restitution, the known pitfall of speculative contact), from a gap it cannot overrun.
-  // Impulses on such points only take the approach out, so they never add energy; separating,
-  // the energy rule above caps them.
+  // integrator moves a body's centre by the mean of the step's start and end velocities (a
+  // contact force acts through the step, integrator_default.cpp) but turns it by its end spin,
+  // so a point closes by dt (c_lin/2 + c_lin'/2 + c_rot'), c_lin the part of its approach c due
+  // to the centres' velocities, c_rot the part due to the spins, ' at the step's end. One that
+  // arrives too fast for its gap could only stop at once by bouncing back, so it brakes one
+  // step ahead: it asks to end the step approaching at no more than c' = s/dt - c_lin/2, which
+  // keeps this step's closure and the next step's, should that one stop it dead, within s
+  // (dt (c_lin/2 + c') + dt c_lin'/2 <= s). So a body lands within two steps, at rest, without
+  // overlap and without a bounce, also when the landing turns it (a coin falling flat: the
+  // far rim stops and the near one would dip), where the margin saw it coming (at least twice
+  // a step's motion, contact_margins.hpp). A point still far pushes nothing: its free approach
+  // never exceeds what it asks. An impact with restitution (approach above the threshold)
+  // instead leaves at e c in the step after which a braked landing could no longer hold it,
+  // s < c dt (3 - e)/2: at its full approach speed (braking first would eat the restitution,
+  // the known pitfall of speculative contact, so until then it is only kept from closing by
+  // more than its gap), from a gap it cannot overrun. Impulses on such points only take the
+  // approach out, so they never add energy; separating, the energy rule above caps them.
   const Real dt = settings.time_step;
   targets.resize(points.size());
   for (size_t i = 0; i < points.size(); ++i) {
@@ -485,7 +489,8 @@ void normal_targets(const std::vector<ContactPoint>& points, const std::vector<R
         const bool now = gap < closing * dt * (3 - settings.restitution) / 2;
         target = now ? settings.restitution * closing : std::min<Real>(0, closing - 2 * gap / dt);
       } else {
-        target = std::min<Real>(0, closing / 2 - gap / dt);
+        const Real closing_linear = start_linear.empty() ? closing : -start_linear[i];
+        target = std::min<Real>(0, closing_linear / 2 - gap / dt);
       }
       if (closing < 0) target = std::min(target, closing);
       targets[i] = target;
@@ -502,7 +507,7 @@ SolverReport solve_semm(const std::vector<ContactPoint>& points, const std::vect
                         const SolverSettings& settings, std::vector<PatchFriction>& patches,
                         std::vector<PointImpulse>& impulses) {
   std::vector<Real> targets;
-  normal_targets(points, start, settings, targets);
+  normal_targets(points, start, {}, settings, targets);
   std::vector<BodyResponse> after;
   return solve_targets(points, targets, bodies, centres, settings, patches, impulses, after);
 }

@@ -76,8 +76,11 @@ Vec3 relative_velocity(const std::vector<BodyResponse>& bodies, const std::vecto
 // The normal relative velocity each point asks for after the step (restitution, resting
 // contact, the energy rule for separating points, the gap of contact before overlap), from
 // `start`, the normal relative velocity at the start of the step. semm.cpp says why.
+// `start_linear`, if not empty, is the part of `start` due to the centres' velocities alone
+// (the gap of contact before overlap closes by their mean over the step, by the end spin).
 void normal_targets(const std::vector<ContactPoint>& points, const std::vector<Real>& start,
-                    const SolverSettings& settings, std::vector<Real>& targets);
+                    const std::vector<Real>& start_linear, const SolverSettings& settings,
+                    std::vector<Real>& targets);
 
 // T(y) - T(y0) of the bodies' pseudo velocities y against y0: sum of 1/2 (y + y0).W^-1 (y - y0).
 Real pseudo_energy_change(const std::vector<BodyResponse>& now,
