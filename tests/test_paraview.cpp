@@ -3,6 +3,7 @@
 // bit for bit with the state they show. tests/paraview/check_paraview.py reads the same files
 // with a real reader (meshio) and checks their geometry and fields.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -161,6 +162,36 @@ TEST_F(ParaviewOutputTest, ThrowsNamingADirectoryThatCannotBeMade) {
     EXPECT_NE(std::string(e.what()).find(dir_ + "/file/out/paraview"), std::string::npos)
         << e.what();
   }
+}
+
+// A frame is written over the closing tags: tem.pvd stays the same file (not a new one renamed
+// over it), keeps what it held before the closing tags byte for byte, and is a complete
+// collection after every frame.
+TEST_F(ParaviewOutputTest, AFrameIsWrittenInPlaceOverTheClosingTags) {
+  const std::string pvd = dir_ + "/tem.pvd", tail = "</Collection>\n</VTKFile>\n";
+  ParaviewOutput output(dir_, model_, std::nullopt);
+  State state = initial_state(model_);
+  Workspace workspace;
+  for (size_t frame = 1; frame <= 3; ++frame) {
+    struct stat before {};
+    ASSERT_EQ(stat(pvd.c_str(), &before), 0);
+    const std::string old = slurp(pvd);
+    ASSERT_EQ(old.substr(old.size() - tail.size()), tail);
+    for (int k = 0; k < 10; ++k) {
+      find_contact_forces(model_, state, workspace);
+      if (k == 0) output.write(model_, state, workspace);
+      advance(model_, state, workspace);
+    }
+    struct stat after {};
+    ASSERT_EQ(stat(pvd.c_str(), &after), 0);
+    EXPECT_EQ(after.st_ino, before.st_ino) << "tem.pvd was replaced, not written in place";
+    const std::string now = slurp(pvd);
+    const size_t kept = old.size() - tail.size();
+    EXPECT_EQ(now.substr(0, kept), old.substr(0, kept));
+    EXPECT_EQ(now.substr(now.size() - tail.size()), tail);
+    EXPECT_EQ(listed_steps(dir_).size(), frame);
+  }
+  EXPECT_EQ(listed_steps(dir_), (std::vector<long long>{0, 10, 20}));
 }
 
 // `tem run --resume` of a finished run extended to a longer duration (as in test_resume.cpp):
