@@ -243,6 +243,7 @@ std::vector<Real> flat(const std::vector<Vec3>& vectors) {
   return out;
 }
 
+// Scalars as a file stores them: -0 as 0.
 std::vector<Real> stored(std::vector<Real> values) {
   for (Real& v : values) v += 0.0;
   return values;
