@@ -8,6 +8,7 @@ packages=(
   nlohmann-json3-dev     # scene files
   libcli11-dev           # command line
   libqhull-dev           # convex hulls of user points
+  zlib1g-dev             # compresses the ParaView files
   libgtest-dev           # tests
   libbenchmark-dev       # benchmarks
   clang libclang-rt-14-dev   # libFuzzer for the scene parser (scripts/fuzz.sh)

@@ -11,8 +11,8 @@ usage: /usr/bin/python3 tools/figures.py RUN_DIR [--out PREFIX] [--times T ...] 
 
 PREFIX defaults to RUN_DIR/figure. --times picks the frames nearest to those times; by default
 N (6) frames evenly spaced over the run. Needs only Debian's python3-numpy and
-python3-matplotlib: the .vtu files (ASCII, written by src/io/paraview_frames.cpp) are read with
-a small XML parse.
+python3-matplotlib: the .vtu files (binary, written by src/io/paraview_frames.cpp) are read by
+tools/tem_vtu.py.
 """
 import argparse
 import csv
@@ -27,6 +27,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
+
+import tem_vtu  # noqa: E402  (tools/tem_vtu.py, beside this script)
 
 LIGHT = np.array([0.4, -0.5, 0.77])  # towards the light, world axes (from above, front left)
 LIGHT /= np.linalg.norm(LIGHT)
@@ -48,14 +50,8 @@ def read_frames(run_dir):
 
 def read_vtu(path):
     """Points, cell connectivity (one row per cell) and every named DataArray of a .vtu file
-    (ASCII, one cell type per file as TEM writes them)."""
-    piece = ET.parse(path).getroot().find("UnstructuredGrid/Piece")
-    arrays = {}
-    for a in piece.iter("DataArray"):
-        kind = float if a.attrib["type"].startswith("Float") else int
-        values = np.array((a.text or "").split(), dtype=kind)
-        components = int(a.attrib.get("NumberOfComponents", "1"))
-        arrays[a.attrib["Name"]] = values.reshape(-1, components) if components > 1 else values
+    (one cell type per file as TEM writes them)."""
+    piece, arrays, _ = tem_vtu.read_vtu(path)
     cells = int(piece.attrib["NumberOfCells"])
     connectivity = arrays["connectivity"].reshape(cells, -1) if cells else np.zeros((0, 3), int)
     return arrays["Points"].reshape(-1, 3), connectivity, arrays

@@ -1,7 +1,7 @@
 #include "io/paraview_frames.hpp"
 
 #include "collision/block_pose.hpp"
-#include "io/vtu_text.hpp"
+#include "io/vtu_binary.hpp"
 
 namespace tem {
 
@@ -46,7 +46,7 @@ std::string bodies_vtu(const Model& model, const State& state) {
     }
   }
 
-  VtuText vtu(state.time, points.size(), body_ids.size());
+  VtuBinary vtu(state.time, points.size(), body_ids.size());
   vtu.begin_point_data();
   vtu.vectors("velocity", velocities);
   vtu.vectors("angular_velocity", angular_velocities);
@@ -82,7 +82,7 @@ std::string contacts_vtu(Real time, const std::vector<ContactPatch>& patches,
     connectivity[i] = static_cast<std::int64_t>(i);
   }
 
-  VtuText vtu(time, n, n);
+  VtuBinary vtu(time, n, n);
   vtu.begin_point_data();
   vtu.vectors("normal", normals);
   vtu.reals("depth", depth);

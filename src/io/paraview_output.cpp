@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <string_view>
 
 #include "io/csv_number.hpp"
 #include "io/paraview_frames.hpp"
@@ -36,6 +37,16 @@ std::optional<long long> frame_step(const std::string& path) {
     return step;
   }
   return std::nullopt;
+}
+
+// What tem.pvd ends with, after its last DataSet line.
+constexpr std::string_view kCollectionTail = "</Collection>\n</VTKFile>\n";
+
+// The two DataSet lines of a frame.
+std::string dataset_lines(long long step, const std::string& time) {
+  const std::string start = "<DataSet timestep=\"" + time + "\" group=\"\" part=\"";
+  return start + "0\" file=\"" + ParaviewOutput::bodies_file(step) + "\"/>\n" + start +
+         "1\" file=\"" + ParaviewOutput::contacts_file(step) + "\"/>\n";
 }
 
 // The value of attribute `name` in one XML tag, or nullopt.
@@ -95,6 +106,7 @@ ParaviewOutput::ParaviewOutput(const std::string& directory, const Model& /*mode
 }
 
 void ParaviewOutput::write(const Model& model, const State& state, const Workspace& workspace) {
+  const bool replaces = !frames_.empty() && frames_.back().step >= state.step;
   while (!frames_.empty() && frames_.back().step >= state.step) frames_.pop_back();
   write_text_file(directory_ + "/" + bodies_file(state.step), bodies_vtu(model, state));
   write_text_file(directory_ + "/" + contacts_file(state.step),
@@ -102,26 +114,43 @@ void ParaviewOutput::write(const Model& model, const State& state, const Workspa
   std::string time;
   append_number(time, state.time);
   frames_.push_back({state.step, time});
-  write_collection();
+  if (replaces)
+    write_collection();
+  else
+    append_to_collection();
 }
 
-void ParaviewOutput::write_collection() const {
+void ParaviewOutput::write_collection() {
   std::string text =
       "<?xml version=\"1.0\"?>\n"
       "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       "<Collection>\n";
-  for (const Frame& frame : frames_) {
-    const std::string start = "<DataSet timestep=\"" + frame.time + "\" group=\"\" part=\"";
-    text += start + "0\" file=\"" + bodies_file(frame.step) + "\"/>\n";
-    text += start + "1\" file=\"" + contacts_file(frame.step) + "\"/>\n";
-  }
-  text += "</Collection>\n</VTKFile>\n";
+  for (const Frame& frame : frames_) text += dataset_lines(frame.step, frame.time);
+  tail_offset_ = static_cast<long long>(text.size());
+  text += kCollectionTail;
 
   const std::string path = directory_ + "/tem.pvd", temporary = path + ".tmp";
   write_text_file(temporary, text);
   std::error_code error;
   fs::rename(temporary, path, error);
   if (error) throw std::runtime_error(path + ": cannot be written: " + error.message());
+}
+
+void ParaviewOutput::append_to_collection() {
+  const Frame& frame = frames_.back();
+  const std::string lines = dataset_lines(frame.step, frame.time);
+  const std::string text = lines + std::string(kCollectionTail);
+  const std::string path = directory_ + "/tem.pvd";
+  // in | out: the file is opened as it is, not emptied.
+  std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
+  if (file) {
+    file.seekp(tail_offset_);
+    file.write(text.data(), static_cast<std::streamsize>(text.size()));
+    file.flush();
+  }
+  file.close();
+  if (!file) throw std::runtime_error(path + ": cannot be written");
+  tail_offset_ += static_cast<long long>(lines.size());
 }
 
 }  // namespace tem

@@ -2,9 +2,12 @@
 // surfaces and the contact patches as two .vtu files under DIR/paraview/, and DIR/tem.pvd, the
 // collection that lists them with their times (part 0 bodies, part 1 contacts).
 //
-// tem.pvd is rewritten whole after every frame, to a temporary file renamed over the old one, so
-// that it is a complete, valid collection at every moment, however the run ends. It only ever
-// lists frames whose files are complete.
+// tem.pvd is a complete, valid collection after every frame, however the run ends, and only ever
+// lists frames whose files are complete. A frame costs the same however many came before it: its
+// DataSet lines are written over the closing tags at the end of the file, followed by the closing
+// tags again, in one write (so the file holds the old collection or the new one, unless the
+// write itself is cut short). The whole file is written, to a temporary file renamed over the
+// old one, only when the collection starts (new or resumed) and when a frame replaces listed ones.
 #pragma once
 
 #include <optional>
@@ -40,10 +43,14 @@ class ParaviewOutput {
     std::string time;  // as written in tem.pvd, so a resumed collection keeps it digit for digit
   };
 
-  void write_collection() const;
+  // The whole collection, to tem.pvd.tmp renamed over tem.pvd.
+  void write_collection();
+  // Lists the last frame of frames_, after the ones tem.pvd lists.
+  void append_to_collection();
 
   std::string directory_;
   std::vector<Frame> frames_;
+  long long tail_offset_ = 0;  // where tem.pvd's closing tags start
 };
 
 }  // namespace tem

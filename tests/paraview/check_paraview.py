@@ -14,7 +14,10 @@ The scene must set output.paraview. For every frame listed in tem.pvd it checks 
   tensor is info's (which also catches a block turned about its own centroid);
 - the velocity field is v + w x (p - x) and the angular velocity field is w, from bodies.csv;
 - the contact file has as many points as energy.csv's contacts, unit normals, the deepest
-  depth of energy.csv, force = fn * normal, and body_a, body_b, wall that agree.
+  depth of energy.csv, force = fn * normal, and body_a, body_b, wall that agree;
+- both files are binary as src/io/vtu_binary.hpp says (appended raw data, zlib blocks), their
+  TimeValue is the frame's time, and tools/tem_vtu.py, a second reader, decodes every array
+  meshio reads to the same bits.
 It exits non-zero, printing every failure, if anything is off.
 """
 import csv
@@ -27,6 +30,9 @@ import xml.etree.ElementTree as ET
 
 import meshio
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+import tem_vtu  # noqa: E402
 
 RELATIVE = 1e-9  # round-off allowance, relative to the body's size or speed
 failures = []
@@ -65,17 +71,41 @@ CONTACT_ARRAYS = ["normal", "depth", "fn", "ft", "force", "body_a", "body_b", "w
                   "connectivity", "offsets", "types"]
 
 
-def contact_count(path):
-    """The number of points of a contacts file, read from the XML. meshio 7.0 cannot read a file
-    without cells (it indexes the first cell type), so a frame without contacts is checked here:
-    a valid VTK file with 0 points, 0 cells and every array present and empty."""
-    piece = ET.parse(path).getroot().find("UnstructuredGrid/Piece")
+def read_binary(path, time):
+    """The Piece and arrays of a frame file as tools/tem_vtu.py decodes them, with the root's
+    attributes and TimeValue checked."""
+    with open(path, "rb") as f:
+        head = f.read(300).decode("latin-1")
+    for attribute in ('byte_order="LittleEndian"', 'header_type="UInt64"',
+                      'compressor="vtkZLibDataCompressor"'):
+        check(attribute in head.split("\n")[1], f"{path}: no {attribute}")
+    piece, arrays, time_value = tem_vtu.read_vtu(path)
+    check(time_value == float(time), f"{path}: TimeValue {time_value!r} != tem.pvd's {time}")
+    return piece, arrays
+
+
+def same_as_meshio(path, mesh, arrays, cell_type):
+    """meshio's arrays bit for bit equal to tem_vtu's (the two readers agree)."""
+    mine = {"Points": arrays["Points"], "connectivity": arrays["connectivity"]}
+    theirs = {"Points": mesh.points, "connectivity": mesh.cells_dict[cell_type].reshape(-1)}
+    theirs.update(mesh.point_data)
+    theirs.update({name: data[0] for name, data in mesh.cell_data.items()})
+    for name in theirs:
+        mine.setdefault(name, arrays.get(name))
+        check(mine[name] is not None and mine[name].dtype == theirs[name].dtype and
+              np.array_equal(mine[name].view(np.uint8), theirs[name].view(np.uint8)),
+              f"{path}: {name} read differently by meshio and tem_vtu")
+
+
+def contact_count(path, piece, arrays):
+    """The number of points of a contacts file. meshio 7.0 cannot read a file without cells (it
+    indexes the first cell type), so a frame without contacts is checked here: a valid VTK file
+    with 0 points, 0 cells and every array present and empty."""
     points, cells = int(piece.attrib["NumberOfPoints"]), int(piece.attrib["NumberOfCells"])
     check(points == cells, f"{path}: {points} points but {cells} cells")
     if points == 0:
-        arrays = {a.attrib["Name"]: (a.text or "").split() for a in piece.iter("DataArray")}
         check(sorted(arrays) == sorted(CONTACT_ARRAYS), f"{path}: arrays {sorted(arrays)}")
-        check(all(not v for v in arrays.values()), f"{path}: values in an empty frame")
+        check(all(len(v) == 0 for v in arrays.values()), f"{path}: values in an empty frame")
     return points
 
 
@@ -141,6 +171,7 @@ def main():
 
         # Bodies.
         mesh = meshio.read(parts["0"])
+        same_as_meshio(parts["0"], mesh, read_binary(parts["0"], t)[1], "triangle")
         points = mesh.points
         triangles = mesh.cells_dict["triangle"]
         body_id = mesh.cell_data_dict["body_id"]["triangle"]
@@ -194,11 +225,12 @@ def main():
         # Contacts.
         n = int(e["contacts"])
         contact_frames += n > 0
-        count = contact_count(parts["1"])
+        count = contact_count(parts["1"], *read_binary(parts["1"], t))
         check(count == n, f"t={t}: {count} contact points, energy.csv says {n}")
         if n == 0 or count != n:
             continue
         contacts = meshio.read(parts["1"])
+        same_as_meshio(parts["1"], contacts, read_binary(parts["1"], t)[1], "vertex")
         check(len(contacts.points) == n, f"t={t}: meshio reads {len(contacts.points)} points")
         data = contacts.point_data
         normal = data["normal"]

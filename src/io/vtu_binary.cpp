@@ -1,0 +1,100 @@
+#include "io/vtu_binary.hpp"
+
+#include "io/zlib_blocks.hpp"
+
+namespace tem {
+namespace {
+
+static_assert(sizeof(int) == 4, "ints are written as Int32");
+static_assert(sizeof(Real) == 8, "Reals are written as Float64");
+
+const std::string kThreeComponents = " NumberOfComponents=\"3\"";
+
+}  // namespace
+
+VtuBinary::VtuBinary(Real time, size_t points, size_t cells) {
+  xml_ =
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+      "header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\">\n"
+      "<UnstructuredGrid>\n"
+      "<FieldData>\n";
+  scratch_.assign(1, time + 0.0);
+  scratch_array("TimeValue", " NumberOfTuples=\"1\"");
+  xml_ += "</FieldData>\n<Piece NumberOfPoints=\"" + std::to_string(points) +
+          "\" NumberOfCells=\"" + std::to_string(cells) + "\">\n";
+}
+
+void VtuBinary::array(const char* type, const char* name, const std::string& extra,
+                      const void* bytes, size_t size) {
+  xml_ += "<DataArray type=\"";
+  xml_ += type;
+  xml_ += "\" Name=\"";
+  xml_ += name;
+  xml_ += '"';
+  // Scalars go without NumberOfComponents, as VTK writes them: readers then give 1-D arrays.
+  xml_ += extra;
+  xml_ += " format=\"appended\" offset=\"" + std::to_string(data_.size()) + "\"/>\n";
+  append_zlib_blocks(data_, bytes, size);
+}
+
+void VtuBinary::scratch_array(const char* name, const std::string& extra) {
+  array("Float64", name, extra, scratch_.data(), scratch_.size() * sizeof(Real));
+}
+
+// Adding +0.0 turns -0 into 0 and leaves every other double as it is.
+void VtuBinary::fill_scratch(const std::vector<Vec3>& values) {
+  scratch_.resize(3 * values.size());
+  Real* out = scratch_.data();
+  for (const Vec3& v : values)
+    for (int k = 0; k < 3; ++k) *out++ = v[k] + 0.0;
+}
+
+void VtuBinary::vectors(const char* name, const std::vector<Vec3>& values) {
+  fill_scratch(values);
+  scratch_array(name, kThreeComponents);
+}
+
+void VtuBinary::reals(const char* name, const std::vector<Real>& values) {
+  scratch_.resize(values.size());
+  for (size_t i = 0; i < values.size(); ++i) scratch_[i] = values[i] + 0.0;
+  scratch_array(name, "");
+}
+
+void VtuBinary::ints(const char* name, const std::vector<int>& values) {
+  array("Int32", name, "", values.data(), values.size() * sizeof(int));
+}
+
+void VtuBinary::points(const std::vector<Vec3>& positions) {
+  xml_ += "<Points>\n";
+  fill_scratch(positions);
+  scratch_array("Points", kThreeComponents);
+  xml_ += "</Points>\n";
+}
+
+void VtuBinary::cells(const std::vector<std::int64_t>& connectivity, int nodes_per_cell,
+                      std::uint8_t type) {
+  const size_t count = connectivity.size() / static_cast<size_t>(nodes_per_cell);
+  xml_ += "<Cells>\n";
+  array("Int64", "connectivity", "", connectivity.data(),
+        connectivity.size() * sizeof(std::int64_t));
+  std::vector<std::int64_t> offsets(count);
+  for (size_t c = 0; c < count; ++c) offsets[c] = static_cast<std::int64_t>(c + 1) * nodes_per_cell;
+  array("Int64", "offsets", "", offsets.data(), offsets.size() * sizeof(std::int64_t));
+  const std::vector<std::uint8_t> types(count, type);
+  array("UInt8", "types", "", types.data(), types.size());
+  xml_ += "</Cells>\n";
+}
+
+std::string VtuBinary::finish() {
+  // The raw data starts after the underscore and ends before the newline (VTK's layout; meshio
+  // relies on both).
+  xml_ += "</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
+  xml_.reserve(xml_.size() + data_.size() + 32);
+  xml_ += data_;
+  xml_ += "\n</AppendedData>\n</VTKFile>\n";
+  data_.clear();
+  return std::move(xml_);
+}
+
+}  // namespace tem
