@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -223,6 +224,8 @@ TEST(SceneReader, FillsDefaults) {
   EXPECT_EQ(s.contact.restitution, 0.0);
   EXPECT_EQ(s.contact.stiffness, 0.0);
   EXPECT_EQ(s.contact.damping, 0.0);
+  EXPECT_FALSE(s.contact.margin.has_value());  // "auto"
+  EXPECT_EQ(s.contact.solver, ContactSolver::rows);
   EXPECT_FALSE(s.container.has_value());
   EXPECT_TRUE(s.walls.empty());
   EXPECT_EQ(s.output.interval, 0.01);
@@ -235,6 +238,24 @@ TEST(SceneReader, FillsDefaults) {
   EXPECT_EQ(b.velocity, Vec3::Zero());
   EXPECT_EQ(b.angular_velocity, Vec3::Zero());
   EXPECT_FALSE(b.fixed);
+}
+
+// contact.margin: "auto" (the default), a number, or 0; contact.solver: rows or blocks.
+TEST(SceneReader, ContactMarginAndSolver) {
+  auto contact = [](const std::string& keys) {
+    const SceneReadResult r = read_scene_text(
+        R"({"contact": {)" + keys +
+            R"(}, "bodies": [{"name": "a", "shape": {"type": "box", "size": [1, 1, 1]}, )"
+            R"("position": [0, 0, 0]}]})",
+        "inline.json");
+    EXPECT_TRUE(r.ok()) << keys;
+    return r.scene.contact;
+  };
+  EXPECT_FALSE(contact(R"("margin": "auto")").margin.has_value());
+  EXPECT_EQ(contact(R"("margin": 0.02)").margin, std::optional<Real>(0.02));
+  EXPECT_EQ(contact(R"("margin": 0)").margin, std::optional<Real>(0.0));
+  EXPECT_EQ(contact(R"("solver": "blocks")").solver, ContactSolver::blocks);
+  EXPECT_EQ(contact(R"("solver": "rows")").solver, ContactSolver::rows);
 }
 
 TEST(SceneReader, ShapeDefaults) {
