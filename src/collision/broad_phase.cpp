@@ -120,7 +120,8 @@ void BroadPhase::find_block_pairs(const Model& model) {
     first = last;
   }
   // Large blocks against every other block (once for two large ones).
-  std::vector<char> is_large(n, 0);
+  std::vector<char>& is_large = is_large_;
+  is_large.assign(static_cast<size_t>(n), 0);
   for (int i : large_) is_large[i] = 1;
   for (int l : large_)
     for (int j = 0; j < n; ++j) {

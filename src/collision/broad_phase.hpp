@@ -78,6 +78,7 @@ class BroadPhase {
   };
   std::vector<Entry> entries_;
   std::vector<int> large_;
+  std::vector<char> is_large_;  // per proxy, kept between steps
   std::vector<Real> extents_;
   Real cell_ = 0;
 };

@@ -135,13 +135,22 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
   }
 
   // One patch per place: blocks of one body touching the other body at one place merge.
-  std::stable_sort(patches.begin(), patches.end(),
-                   [](const ContactPatch& p, const ContactPatch& q) {
-                     const bool pw = p.wall >= 0, qw = q.wall >= 0;
-                     if (p.body_a != q.body_a) return p.body_a < q.body_a;
-                     if (pw != qw) return qw;
-                     return pw ? p.wall < q.wall : p.body_b < q.body_b;
-                   });
+  // Sorted through an index with the found order as the last key: the order std::stable_sort
+  // gives, without its temporary buffer (allocated at every call).
+  w.order.resize(patches.size());
+  for (size_t k = 0; k < patches.size(); ++k) w.order[k] = static_cast<int>(k);
+  std::sort(w.order.begin(), w.order.end(), [&](int i, int j) {
+    const ContactPatch &p = patches[static_cast<size_t>(i)], &q = patches[static_cast<size_t>(j)];
+    const bool pw = p.wall >= 0, qw = q.wall >= 0;
+    if (p.body_a != q.body_a) return p.body_a < q.body_a;
+    if (pw != qw) return qw;
+    if (pw ? p.wall != q.wall : p.body_b != q.body_b) return pw ? p.wall < q.wall : p.body_b < q.body_b;
+    return i < j;
+  });
+  if (w.sorted.size() < patches.size()) w.sorted.resize(patches.size());
+  for (size_t k = 0; k < patches.size(); ++k)
+    std::swap(w.sorted[k], patches[static_cast<size_t>(w.order[k])]);
+  for (size_t k = 0; k < patches.size(); ++k) std::swap(patches[k], w.sorted[k]);
   // (Patches of contact before overlap stay one per block pair: each is one face-on-face or
   // edge-on-edge place with its own normal.)
   if (!ahead) merge_touching_patches(patches);

@@ -33,6 +33,8 @@ struct ContactWorkspace {
   // only after overlap, by the paper's tests.
   std::vector<Real> reach;
   std::vector<WorldBlock> world;  // every block placed for this step (contact before overlap)
+  std::vector<int> order;                  // sorting the patches by body pair
+  std::vector<ContactPatch> sorted;        // the patches in that order, swapped with the result
 };
 
 // Narrow phase and patches for the pairs of the workspace's last broad-phase update: with the

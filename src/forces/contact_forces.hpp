@@ -31,6 +31,13 @@ struct ContactForces {
   std::vector<Real> targets;   // normal relative velocity each point asks for after the step
   std::vector<PatchFriction> friction;  // one per patch (default SEMM)
   RowSolverMemory rows;                 // the scalar-row solver's memory
+  // The overlap correction's working vectors (overlap_correction.cpp), kept between steps.
+  struct Correction {
+    std::vector<Real> targets;
+    std::vector<BodyResponse> still, moved;
+    std::vector<PatchFriction> patches;
+    std::vector<PointImpulse> impulses;
+  } correction;
   std::vector<Real> patch_depth;         // one per patch
   std::vector<PointImpulse> impulses;
   // The last step's points and impulses, for the warm start; how far a point may move and still

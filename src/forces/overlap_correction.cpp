@@ -16,7 +16,8 @@ CorrectionReport correct_overlap(const Model& model, ContactForces& f, Real ener
   CorrectionReport report;
   if (f.points.empty()) return report;
   const Real dt = model.scene.time_step;
-  std::vector<Real> targets(f.points.size(), 0);
+  std::vector<Real>& targets = f.correction.targets;
+  targets.assign(f.points.size(), 0);
   bool any = false;
   for (size_t i = 0; i < f.points.size(); ++i) {
     const ContactPoint& c = f.points[i];
@@ -39,16 +40,19 @@ CorrectionReport correct_overlap(const Model& model, ContactForces& f, Real ener
   const Real dissipated = energy_before - after.total();
   if (!(dissipated > 1e-12 * (std::abs(after.kinetic) + std::abs(after.potential)))) return report;
 
-  std::vector<BodyResponse> still = f.responses;
+  std::vector<BodyResponse>& still = f.correction.still;
+  still = f.responses;
   for (BodyResponse& r : still) r.velocity = r.angular_velocity = Vec3::Zero();
-  std::vector<BodyResponse> moved;
+  std::vector<BodyResponse>& moved = f.correction.moved;
   SolverSettings stopping;
   stopping.tolerance = model.scene.contact.tolerance;
   stopping.max_sweeps = model.scene.contact.max_sweeps;
   stopping.colour_sweeps = model.scene.contact.colour_sweeps;
   // The scalar-row solver where the step used it (its memory is free again by now).
   RowSolverMemory* rows = model.scene.contact.solver == ContactSolver::rows ? &f.rows : nullptr;
-  solve_separation(f.points, targets, still, f.centres, f.friction, moved, stopping, rows);
+  f.correction.patches = f.friction;
+  solve_separation(f.points, targets, still, f.centres, f.correction.patches,
+                   f.correction.impulses, moved, stopping, rows);
 
   // The potential energy the move costs, against what the step dissipated.
   Real lift = 0;

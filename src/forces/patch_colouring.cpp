@@ -6,11 +6,13 @@
 
 namespace tem {
 
-Colouring colour_patches(const std::vector<PatchFriction>& patches,
-                         const std::vector<BodyResponse>& bodies) {
-  std::vector<std::uint64_t> used(bodies.size(), 0);
+void colour_patches(const std::vector<PatchFriction>& patches,
+                    const std::vector<BodyResponse>& bodies, Colouring& out) {
+  std::vector<std::uint64_t>& used = out.used;
+  used.assign(bodies.size(), 0);
   auto moving = [&](int b) { return b >= 0 && bodies[b].inverse_mass > 0 ? b : -1; };
-  std::vector<int> colour(patches.size());
+  std::vector<int>& colour = out.colour;
+  colour.resize(patches.size());
   std::array<int, kColours + 1> count{};
   for (size_t k = 0; k < patches.size(); ++k) {
     const int a = moving(patches[k].body_a), b = moving(patches[k].body_b);
@@ -23,14 +25,12 @@ Colouring colour_patches(const std::vector<PatchFriction>& patches,
     colour[k] = c;
     ++count[c];
   }
-  Colouring out;
   out.start.assign(kColours + 2, 0);
   for (int c = 0; c <= kColours; ++c) out.start[c + 1] = out.start[c] + count[c];
   out.order.resize(patches.size());
   std::array<int, kColours + 1> next{};
   for (int c = 0; c <= kColours; ++c) next[c] = out.start[c];
   for (size_t k = 0; k < patches.size(); ++k) out.order[next[colour[k]]++] = static_cast<int>(k);
-  return out;
 }
 
 }  // namespace tem

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 #include "forces/body_response.hpp"
@@ -23,10 +24,14 @@ constexpr int kColours = 64;
 struct Colouring {
   std::vector<int> order;  // patch indices, colour by colour, in patch order within a colour
   std::vector<int> start;  // colour c is order[start[c], start[c + 1]); the last one is serial
+  // Scratch kept between steps so that colouring a running pile allocates nothing.
+  std::vector<std::uint64_t> used;  // per body, the colours its patches have taken
+  std::vector<int> colour;          // per patch
 };
 
-Colouring colour_patches(const std::vector<PatchFriction>& patches,
-                         const std::vector<BodyResponse>& bodies);
+// Fills `out` (its vectors reused).
+void colour_patches(const std::vector<PatchFriction>& patches,
+                    const std::vector<BodyResponse>& bodies, Colouring& out);
 
 // The largest impulse change and the largest impulse of a sweep, kept per thread (the maximum
 // does not depend on the order it is taken in).

@@ -414,7 +414,8 @@ SolverReport solve_targets(const std::vector<ContactPoint>& points,
     return solve_laid_out(points, targets, input, centres, settings, one_by_one, patches,
                           impulses, bodies);
   }
-  const Colouring colouring = colour_patches(patches, input);
+  Colouring colouring;
+  colour_patches(patches, input, colouring);
   std::vector<ContactPoint> laid_points;
   std::vector<Real> laid_targets;
   std::vector<PointImpulse> laid_impulses;
@@ -516,7 +517,8 @@ SolverReport solve_separation(const std::vector<ContactPoint>& points,
                               const std::vector<Real>& targets,
                               const std::vector<BodyResponse>& bodies,
                               const std::vector<Vec3>& centres,
-                              std::vector<PatchFriction> patches,
+                              std::vector<PatchFriction>& patches,
+                              std::vector<PointImpulse>& impulses,
                               std::vector<BodyResponse>& velocities,
                               const SolverSettings& stopping, RowSolverMemory* rows) {
   SolverSettings settings;
@@ -524,7 +526,7 @@ SolverReport solve_separation(const std::vector<ContactPoint>& points,
   settings.tolerance = stopping.tolerance;
   settings.max_sweeps = stopping.max_sweeps;
   settings.colour_sweeps = stopping.colour_sweeps;
-  std::vector<PointImpulse> impulses(points.size());
+  impulses.assign(points.size(), PointImpulse{});
   for (PatchFriction& p : patches) p.t1 = p.t2 = p.twist = 0;
   if (rows) {
     const SolverReport report = solve_semm_rows(points, {}, targets, bodies, centres, settings,

@@ -100,13 +100,16 @@ SolverReport solve_semm(const std::vector<ContactPoint>& points, const std::vect
 
 // The pseudo velocities (`velocities`: the bodies' with their own set to zero on entry, their
 // result on return) that separate the points at the given normal speeds, impulses >= 0, no
-// friction: what the overlap correction moves the bodies by. With `rows`, by the scalar-row
-// solver (semm_rows.hpp) in that memory, else by patch blocks.
+// friction: what the overlap correction moves the bodies by. `patches` is a working copy of the
+// step's patches (their friction is cleared), `impulses` scratch: both the caller's, so that a
+// running pile allocates nothing here. With `rows`, by the scalar-row solver (semm_rows.hpp) in
+// that memory, else by patch blocks.
 SolverReport solve_separation(const std::vector<ContactPoint>& points,
                               const std::vector<Real>& targets,
                               const std::vector<BodyResponse>& bodies,
                               const std::vector<Vec3>& centres,
-                              std::vector<PatchFriction> patches,
+                              std::vector<PatchFriction>& patches,
+                              std::vector<PointImpulse>& impulses,
                               std::vector<BodyResponse>& velocities,
                               const SolverSettings& stopping = SolverSettings{},
                               RowSolverMemory* rows = nullptr);

@@ -274,13 +274,13 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
   reset_velocities(m, bodies);
 
   // The order of the sweeps: by colour, or patch order as one serial colour.
-  Colouring colouring;
+  Colouring& colouring = m.colouring;
   if (settings.colour_sweeps) {
-    colouring = colour_patches(patches, bodies);
+    colour_patches(patches, bodies, colouring);
   } else {
     colouring.order.resize(patches.size());
     for (size_t k = 0; k < patches.size(); ++k) colouring.order[k] = static_cast<int>(k);
-    colouring.start = {0, 0, static_cast<int>(patches.size())};
+    colouring.start.assign({0, 0, static_cast<int>(patches.size())});
   }
   // Rows laid out in that order, each patch's contiguous; built in parallel, patch by patch.
   const size_t n_patches = colouring.order.size();
@@ -307,7 +307,8 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
   // Stopped short with more energy than no impulse at all would leave (a warm start that no
   // longer fits): start again from zero, from where every sweep can only lower the energy.
   if (!report.converged && warm && !start.empty()) {
-    std::vector<BodyResponse> now = bodies;
+    std::vector<BodyResponse>& now = m.now;
+    now = bodies;
     for (size_t b = 0; b < n; ++b) {
       now[b].velocity = m.velocity[b];
       now[b].angular_velocity = m.angular_velocity[b];

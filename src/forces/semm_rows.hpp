@@ -51,6 +51,8 @@ struct RowSolverMemory {
   std::vector<int> point_of_row, patch_of_friction;
   std::vector<SweepSize> sizes;
   std::vector<Vec3> free_velocity, free_angular_velocity;  // energy check (semm_rows.cpp)
+  std::vector<BodyResponse> now;  // the bodies after stopped sweeps (semm_rows.cpp)
+  Colouring colouring;            // the sweeps' order, its vectors reused step after step
 };
 
 // Default SEMM with scalar normal rows. `start` is each point's normal relative velocity at the
