@@ -19,8 +19,8 @@
 #include "bench_scenes.hpp"
 #include "io/paraview_output.hpp"
 #include "support/vtu_reader.hpp"
-#include "world/parallel.hpp"
-#include "world/step.hpp"
+#include "support/parallel.hpp"
+#include "simulation/step.hpp"
 
 namespace tem::bench {
 namespace {

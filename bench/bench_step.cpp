@@ -6,8 +6,8 @@
 #include <benchmark/benchmark.h>
 
 #include "bench_scenes.hpp"
-#include "world/parallel.hpp"
-#include "world/step.hpp"
+#include "support/parallel.hpp"
+#include "simulation/step.hpp"
 
 namespace tem::bench {
 namespace {

@@ -26,7 +26,7 @@
 #include "io/vtu_binary.hpp"
 #include "support/tem_process.hpp"
 #include "support/vtu_reader.hpp"
-#include "world/parallel.hpp"
+#include "support/parallel.hpp"
 
 namespace tem {
 namespace {

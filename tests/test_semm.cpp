@@ -8,7 +8,7 @@
 #include "forces/body_response.hpp"
 #include "forces/semm.hpp"
 #include "geometry/primitives.hpp"
-#include "world/step.hpp"
+#include "simulation/step.hpp"
 
 namespace tem {
 namespace {

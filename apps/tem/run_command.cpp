@@ -15,9 +15,9 @@
 #include "io/run_output.hpp"
 #include "progress.hpp"
 #include "stop_signal.hpp"
-#include "world/parallel.hpp"
+#include "support/parallel.hpp"
 #include "world/state_hash.hpp"
-#include "world/step.hpp"
+#include "simulation/step.hpp"
 
 namespace tem::cli {
 namespace {

@@ -18,7 +18,8 @@ bool contact_before_overlap(const SceneDef& scene) {
          !(c.margin && *c.margin == 0);
 }
 
-void contact_reaches(const Model& model, const State& state, std::vector<Real>& reach) {
+void contact_reaches(const Model& model, const State& state, std::vector<Real>& reach,
+                     const ExternalLoads* loads) {
   const SceneDef& scene = model.scene;
   if (!contact_before_overlap(scene)) {
     reach.clear();
@@ -38,6 +39,13 @@ void contact_reaches(const Model& model, const State& state, std::vector<Real>& 
     if (!model.bodies[b].fixed) {
       const BodyState& s = state.bodies[b];
       r += kMotionRoom * (s.v.norm() + s.omega.norm() * size) * dt + fall;
+      if (loads && !loads->empty()) {
+        // What the external force and torque add within the step.
+        const RigidInertia& inertia = model.bodies[b].inertia;
+        r += (loads->force[b].norm() / inertia.mass +
+              (inertia.inertia_inv * (s.g.transpose() * loads->torque[b])).norm() * size) *
+             dt * dt;
+      }
     }
     reach[b] = r;
   }

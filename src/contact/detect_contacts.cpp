@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "world/parallel.hpp"
+#include "support/parallel.hpp"
 
 namespace tem {
 namespace {

@@ -25,6 +25,22 @@ struct State {
   std::vector<BodyState> bodies;
 };
 
+// Forces and torques from outside TEM (a fluid, a field, a user's law), per body, world axes,
+// torque about the centre of mass, held through every step until changed. Not part of the
+// State: a step does not change them, whoever applies them does. `active` false (all zero): the
+// step takes the same path, and gives the same bits, as with no loads at all.
+struct ExternalLoads {
+  std::vector<Vec3> force, torque;  // one per body when active
+  bool active = false;
+  bool empty() const { return !active; }
+  // active = some force or torque is not zero.
+  void update_active() {
+    active = false;
+    for (size_t b = 0; b < force.size() && !active; ++b)
+      active = !force[b].isZero(0) || !torque[b].isZero(0);
+  }
+};
+
 // The constant inertial data an integrator needs, in body axes about the centre of mass.
 struct RigidInertia {
   Real mass = 1;

@@ -1,6 +1,6 @@
 #include "forces/body_response.hpp"
 
-#include "world/parallel.hpp"
+#include "support/parallel.hpp"
 
 #include "dynamics/integrator.hpp"
 
@@ -23,8 +23,9 @@ Mat3 paper_torque_response(const RigidInertia& body, const BodyState& state, Rea
 }
 
 void body_responses(const Model& model, const State& state, Real dt,
-                    std::vector<BodyResponse>& out) {
+                    std::vector<BodyResponse>& out, const ExternalLoads* loads) {
   const Vec3& gravity = model.scene.gravity;
+  const bool loaded = loads && !loads->empty();
   out.assign(model.bodies.size(), BodyResponse{});
   parallel_for(static_cast<long long>(model.bodies.size()), 256, [&](long long i) {
     const Body& body = model.bodies[i];
@@ -33,19 +34,22 @@ void body_responses(const Model& model, const State& state, Real dt,
     const RigidInertia& inertia = body.inertia;
     BodyResponse& r = out[i];
     r.inverse_mass = 1 / inertia.mass;
-    r.velocity = s.v + gravity * dt;
+    const Vec3 force = loaded ? loads->force[i] : Vec3::Zero();
+    const Vec3 torque = loaded ? loads->torque[i] : Vec3::Zero();
+    r.velocity = s.v + (gravity + force / inertia.mass) * dt;
     if (model.scene.integrator == IntegratorKind::paper) {
       // Omega' with no contact torque (the previous torque still enters through dN), and
       // W = (d Omega' / d N) / dt for an angular impulse h = N dt.
       BodyState free = s;
-      integrate_paper(inertia, gravity, Vec3::Zero(), Vec3::Zero(), dt, free);
+      integrate_paper(inertia, gravity, force, torque, dt, free);
       const Mat3 w = paper_torque_response(inertia, s, dt) / dt;
       r.angular = w.transpose() * inertia.inertia * w;
       r.angular_velocity = w.transpose() * (inertia.inertia * free.omega);
     } else {
       // W = A^-1 g^T: y is the world angular velocity, Q = g A^-1 g^T.
+      // The external torque is an angular impulse N dt taken like a contact's.
       r.angular = s.g * inertia.inertia_inv * s.g.transpose();
-      r.angular_velocity = s.g * s.omega;
+      r.angular_velocity = s.g * s.omega + r.angular * (torque * dt);
     }
   });
 }

@@ -27,9 +27,10 @@ struct BodyResponse {
   Vec3 angular_velocity = Vec3::Zero();  // y, angular part, with no contact impulse
 };
 
-// Responses of every body for one step of `dt` from `state`.
+// Responses of every body for one step of `dt` from `state`, under gravity and the external
+// loads (none when null or empty).
 void body_responses(const Model& model, const State& state, Real dt,
-                    std::vector<BodyResponse>& out);
+                    std::vector<BodyResponse>& out, const ExternalLoads* loads = nullptr);
 
 // Velocity of body `body`'s material point at p in `state` (a wall, body -1, and fixed bodies
 // stand still).

@@ -60,7 +60,8 @@ void match_radii(const Model& model, std::vector<Real>& radius) {
 }  // namespace
 
 void compute_contact_forces(const Model& model, const State& state,
-                            const std::vector<ContactPatch>& patches, ContactForces& f) {
+                            const std::vector<ContactPatch>& patches, ContactForces& f,
+                            const ExternalLoads* loads) {
   const SceneDef& scene = model.scene;
   const Real dt = scene.time_step;
   const size_t n_bodies = model.bodies.size();
@@ -94,7 +95,7 @@ void compute_contact_forces(const Model& model, const State& state,
   const bool one_point = scene.contact.points == PatchPoints::one;
   for (size_t i = 0; i < patches.size(); ++i)
     patch_points(patches[i], static_cast<int>(i), one_point, f.points);
-  body_responses(model, state, dt, f.responses);
+  body_responses(model, state, dt, f.responses, loads);
 
   if (paper) {
     f.solver = solve_semm_paper(f.points, f.responses, f.centres, f.impulses);

@@ -55,7 +55,10 @@ struct ContactForces {
 };
 
 // Fills out.force, out.torque (one per body) and out.patch_forces (one per patch).
+// `loads`: the external forces and torques acting through the step (none when null), which the
+// contact impulses must answer as they answer gravity.
 void compute_contact_forces(const Model& model, const State& state,
-                            const std::vector<ContactPatch>& patches, ContactForces& out);
+                            const std::vector<ContactPatch>& patches, ContactForces& out,
+                            const ExternalLoads* loads = nullptr);
 
 }  // namespace tem

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "world/step.hpp"
+#include "simulation/step.hpp"
 
 namespace tem {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "forces/body_response.hpp"
 #include "forces/semm.hpp"
-#include "world/parallel.hpp"
+#include "support/parallel.hpp"
 
 namespace tem {
 

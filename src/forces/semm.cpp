@@ -9,7 +9,7 @@
 
 #include "forces/patch_colouring.hpp"
 #include "forces/semm_rows.hpp"
-#include "world/parallel.hpp"
+#include "support/parallel.hpp"
 
 namespace tem {
 namespace {

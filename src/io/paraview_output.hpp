@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "world/step.hpp"
+#include "simulation/step.hpp"
 
 namespace tem {
 

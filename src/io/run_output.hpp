@@ -9,7 +9,7 @@
 
 #include "io/checkpoint.hpp"
 #include "io/paraview_output.hpp"
-#include "world/step.hpp"
+#include "simulation/step.hpp"
 
 namespace tem {
 

@@ -9,7 +9,7 @@
 #include <new>
 #include <vector>
 
-#include "world/parallel.hpp"
+#include "support/parallel.hpp"
 
 namespace tem {
 namespace {

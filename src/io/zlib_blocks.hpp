@@ -7,7 +7,7 @@
 // which and why).
 //
 // Blocks are independent, so they are compressed side by side on OpenMP's threads
-// (world/parallel.hpp): the bytes are the same for any number of threads.
+// (support/parallel.hpp): the bytes are the same for any number of threads.
 #pragma once
 
 #include <cstddef>

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "io/scene_reader.hpp"
-#include "world/step.hpp"
+#include "simulation/step.hpp"
 
 namespace tem::testing_support {
 

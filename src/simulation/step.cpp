@@ -1,4 +1,4 @@
-#include "world/step.hpp"
+#include "simulation/step.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include "dynamics/integrator.hpp"
 #include "contact/contact_margins.hpp"
 #include "forces/overlap_correction.hpp"
-#include "world/parallel.hpp"
+#include "support/parallel.hpp"
 
 namespace tem {
 namespace {
@@ -18,6 +18,20 @@ double seconds_since(Clock::time_point& start) {
   const double s = std::chrono::duration<double>(now - start).count();
   start = now;
   return s;
+}
+
+// The work of the external loads over a step from `before` to `after`: F.(x1 - x0) and
+// N.(dt omega1) (the default integrator's drift turns a body by its spin after the kick).
+Real external_work(const Model& model, const ExternalLoads& loads,
+                   const std::vector<BodyState>& before, const std::vector<BodyState>& after) {
+  Real work = 0;
+  const Real dt = model.scene.time_step;
+  for (size_t b = 0; b < model.bodies.size(); ++b) {
+    if (model.bodies[b].fixed) continue;
+    work += loads.force[b].dot(after[b].x - before[b].x);
+    work += loads.torque[b].dot(dt * after[b].angular_velocity_world());
+  }
+  return work;
 }
 
 }  // namespace
@@ -33,7 +47,8 @@ void find_contact_forces(const Model& model, const State& state, Workspace& w) {
 
   // 1. Broad phase: block pairs and block-wall pairs whose world bounds overlap, grown by each
   // body's reach where contact is made before overlap.
-  contact_reaches(model, state, w.contact.reach);
+  const ExternalLoads* loads = w.loads.empty() ? nullptr : &w.loads;
+  contact_reaches(model, state, w.contact.reach, loads);
   w.contact.broad_phase.update(model, state, w.contact.reach);
   w.times.broad_phase += seconds_since(clock);
 
@@ -42,7 +57,7 @@ void find_contact_forces(const Model& model, const State& state, Workspace& w) {
   w.times.narrow_phase += seconds_since(clock);
 
   // 4. Forces: the contact impulses of the scene's force model, as forces held over the step.
-  compute_contact_forces(model, state, w.patches, w.forces);
+  compute_contact_forces(model, state, w.patches, w.forces, loads);
   w.times.forces += seconds_since(clock);
 }
 
@@ -53,14 +68,20 @@ void advance(const Model& model, State& state, Workspace& w) {
   // 5. Integration of every moving body under gravity and its contact force and torque.
   const bool correct = scene.contact.model == ContactModel::semm &&
                        scene.integrator == IntegratorKind::default_ && !w.patches.empty();
-  const Real energy_before = correct ? system_energies(model, state).total() : 0;
-  if (!w.contact.reach.empty()) w.before = state.bodies;
+  Real energy_before = correct ? system_energies(model, state).total() : 0;
+  const bool loaded = !w.loads.empty();
+  if (!w.contact.reach.empty() || loaded) w.before = state.bodies;
   parallel_for(static_cast<long long>(model.bodies.size()), 256, [&](long long i) {
     if (model.bodies[i].fixed) return;
-    integrate(scene.integrator, model.bodies[i].inertia, scene.gravity, w.forces.force[i],
-              w.forces.torque[i], scene.time_step, state.bodies[i]);
+    const Vec3 force = loaded ? Vec3(w.forces.force[i] + w.loads.force[i]) : w.forces.force[i];
+    const Vec3 torque = loaded ? Vec3(w.forces.torque[i] + w.loads.torque[i]) : w.forces.torque[i];
+    integrate(scene.integrator, model.bodies[i].inertia, scene.gravity, force, torque,
+              scene.time_step, state.bodies[i]);
   });
   // 6. Correction of existing overlap, within the energy the contacts dissipated (default).
+  // The external loads' work over the step is no dissipation of the contacts': a drag's loss
+  // must not fund a correction, nor a push's gain hide one.
+  if (correct && loaded) energy_before += external_work(model, w.loads, w.before, state.bodies);
   if (correct && correct_overlap(model, w.forces, energy_before, state).applied)
     ++w.times.corrected_steps;
   // Bodies that moved farther than their reach could meet a contact already overlapping.

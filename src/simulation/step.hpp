@@ -34,14 +34,17 @@ struct Workspace {
   std::vector<ContactPatch> patches;  // of the last step, at the state it started from
   ContactForces forces;               // of the last step
   StageTimes times;
-  std::vector<BodyState> before;  // the bodies at the step's start (reach check)
+  std::vector<BodyState> before;  // the bodies at the step's start (reach check, external work)
+  // Forces and torques from outside (the public API's external_force / external_torque), held
+  // until changed; empty: none. Sized to the bodies when set.
+  ExternalLoads loads;
 };
 
 // Stages 1-4 at `state`: the patches and the contact forces of the step that starts there.
 void find_contact_forces(const Model& model, const State& state, Workspace& workspace);
 
 // Stage 5: integrates with the forces of the last find_contact_forces, which must have been
-// called on this same state.
+// called on this same state, and the workspace's external loads.
 void advance(const Model& model, State& state, Workspace& workspace);
 
 // One whole step: find_contact_forces, then advance.

@@ -1,0 +1,165 @@
+// TEM's public C++ API: one simulation of rigid bodies made of convex blocks, loaded from a scene
+// (a file, JSON text, or a SceneDef built in code), stepped, read and pushed from outside.
+//
+//   tem::Simulation sim = tem::Simulation::load("scene.json");
+//   sim.set_external_force(0, {0, 0, -0.5});   // held for every step until changed
+//   sim.step(100);
+//   tem::Vec3 x = sim.position(0);
+//
+// `tem run` is a client of this class, and so is the Python module (python/); what either writes
+// or computes, a C++ program gets the same, bit for bit.
+//
+// Memory: the state arrays (position_data() ...) point into the simulation's own storage; they
+// stay valid, and see each new step without a copy, for the life of the Simulation object
+// (moving the object keeps them valid too). One Simulation is used from one thread at a time;
+// step() shares its work among the threads set by set_threads().
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tem/scene_def.hpp"
+#include "tem/types.hpp"
+
+namespace tem {
+
+// A scene that cannot be loaded: what() holds every problem, one per line, as `tem check`
+// prints them ("FILE: JSON.path: reason").
+class SceneLoadError : public std::runtime_error {
+ public:
+  explicit SceneLoadError(const std::string& message) : std::runtime_error(message) {}
+};
+
+// One contact patch of the last step: where it is at the step's start, its normal (unit, from
+// body_a into body_b), its depth (negative: still a gap apart, contact before overlap), and the
+// magnitudes of the normal and tangential forces held on body_a over the step.
+struct Contact {
+  int body_a = -1;
+  int body_b = -1;  // -1 when the other side is a wall
+  int wall = -1;    // the wall's index (the container's six faces first), or -1
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();
+  Real depth = 0;
+  Real normal_force = 0;
+  Real tangential_force = 0;
+};
+
+struct SystemEnergies {
+  Real kinetic = 0;
+  Real potential = 0;  // of gravity, -M G.x summed
+  Real total() const { return kinetic + potential; }
+};
+
+class Simulation {
+ public:
+  // Loaders. Bad input throws SceneLoadError with every problem found.
+  static Simulation load(const std::string& scene_file);
+  // `origin` names the text in messages and scene.json's `source`.
+  static Simulation from_json(const std::string& scene_json,
+                              const std::string& origin = "<scene>");
+  static Simulation from_scene(const SceneDef& scene);
+  // The scene at a checkpoint written by write_checkpoint() or `tem run` (only `duration` and
+  // `output.checkpoint_interval` may differ from the scene it was taken of).
+  static Simulation resume(const std::string& scene_file, const std::string& checkpoint_file);
+
+  Simulation(Simulation&&) noexcept;
+  Simulation& operator=(Simulation&&) noexcept;
+  ~Simulation();
+
+  // --- stepping -------------------------------------------------------------------------
+  // n whole steps of time_step(). While recording, the output rows fall due as in `tem run`.
+  void step(long long n = 1);
+  Real time() const;
+  long long step_count() const;
+  Real time_step() const;
+  // Steps `tem run` takes for the scene's duration: round(duration / time_step).
+  long long total_steps() const;
+  // Threads for the step's shared work (OpenMP; 0: one per core). The results do not depend on
+  // it. A process-wide setting, like OMP_NUM_THREADS.
+  static void set_threads(int threads);
+
+  // --- bodies ---------------------------------------------------------------------------
+  int body_count() const;
+  const std::string& body_name(int body) const;
+  int body_index(const std::string& name) const;  // -1 when there is none
+  bool body_fixed(int body) const;
+  Real mass(int body) const;
+  Mat3 inertia_body(int body) const;   // about the centre of mass, body axes
+  Mat3 inertia_world(int body) const;  // about the centre of mass, world axes, now
+  Real volume(int body) const;
+
+  // State of one body now: centre of mass, attitude [w, x, y, z] (w >= 0), velocity of the
+  // centre of mass, angular velocity (world axes).
+  Vec3 position(int body) const;
+  Quat attitude(int body) const;
+  Vec3 velocity(int body) const;
+  Vec3 angular_velocity(int body) const;
+
+  // The same for all bodies at once, without a copy. position_data() and velocity_data() point
+  // at body 0's x and v inside TEM's own state; body i's are state_stride() bytes further on.
+  // quaternion_data() (4 per body, [w, x, y, z]) and angular_velocity_data() (3 per body, world
+  // axes) are contiguous arrays that TEM refreshes after every step.
+  const Real* position_data() const;
+  const Real* velocity_data() const;
+  std::ptrdiff_t state_stride() const;
+  const Real* quaternion_data() const;
+  const Real* angular_velocity_data() const;
+  // The first body whose state stopped being finite (a blown-up scene), or -1.
+  int first_non_finite_body() const;
+
+  // --- forces from outside --------------------------------------------------------------
+  // Per body, world axes, the torque about the centre of mass; held through every step until
+  // changed (zero at the start). Fixed bodies ignore them. The data pointers are contiguous,
+  // 3 per body, writable between steps.
+  void set_external_force(int body, const Vec3& force);
+  void set_external_torque(int body, const Vec3& torque);
+  Vec3 external_force(int body) const;
+  Vec3 external_torque(int body) const;
+  Real* external_force_data();
+  Real* external_torque_data();
+  void clear_external_loads();
+
+  // --- results --------------------------------------------------------------------------
+  // The patches of the last step taken (empty before the first).
+  std::vector<Contact> contacts() const;
+  SystemEnergies energies() const;
+  // A 64-bit hash of the state's exact bits, as `tem run --hash` prints it (hex: state_hash_hex).
+  std::uint64_t state_hash() const;
+  std::string state_hash_hex() const;
+
+  // --- files ----------------------------------------------------------------------------
+  // Writes `tem run`'s files into `directory` (bodies.csv, energy.csv, scene.json; with
+  // `contacts` contacts.csv; ParaView files when the scene asks) from the current state on: a
+  // row now, then every output interval, and finish_recording() writes the last state's row.
+  void record(const std::string& directory, bool contacts = false);
+  // Continues a run that `tem run` or record() left in `directory` from its checkpoint.bin:
+  // the files are cut back to that point and appended to. Throws std::runtime_error when the
+  // checkpoint belongs to another scene or run.
+  static Simulation resume_recording(const std::string& scene_file, const std::string& directory,
+                                     bool contacts);
+  bool recording() const;
+  void finish_recording();
+  // State and the contact solver's memory (warm start, friction, penalty springs): resuming
+  // from it continues bit for bit. While recording, also the files' sizes.
+  void write_checkpoint(const std::string& path);
+
+  // The scene as loaded, defaults filled in.
+  const SceneDef& scene() const;
+  // Warnings about accepted defects of the scene (a non-convex block allowed, deep initial
+  // overlap), one line each.
+  const std::vector<std::string>& warnings() const;
+
+  // For tools built on TEM's internals (the CLI's summary): the implementation object.
+  struct Impl;
+  Impl& impl() { return *impl_; }
+  const Impl& impl() const { return *impl_; }
+
+ private:
+  explicit Simulation(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tem

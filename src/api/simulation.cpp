@@ -1,0 +1,349 @@
+#include "tem/simulation.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "api/simulation_impl.hpp"
+#include "contact/initial_overlap.hpp"
+#include "io/checkpoint.hpp"
+#include "io/scene_reader.hpp"
+#include "io/scene_writer.hpp"
+#include "support/parallel.hpp"
+#include "world/state_hash.hpp"
+
+namespace tem {
+namespace {
+
+Model build_or_throw(const SceneReadResult& read, const std::string& origin) {
+  if (!read.ok()) {
+    std::string message;
+    for (const SceneProblem& p : read.problems) {
+      if (!message.empty()) message += '\n';
+      message += format_problem(origin, p);
+    }
+    throw SceneLoadError(message);
+  }
+  // Geometric problems (a flat point cloud, a non-convex block) show up only when the blocks
+  // are built; the core names the shape's JSON path in them.
+  try {
+    return build_model(read.scene);
+  } catch (const SceneError& e) {
+    throw SceneLoadError(format_problem(origin, {e.path(), e.reason()}));
+  }
+}
+
+long long steps_per(Real interval, Real dt) {
+  return std::max<long long>(1, std::llround(interval / dt));
+}
+
+// The checkpoint of `path`, checked against the scene.
+Checkpoint read_matching_checkpoint(const Model& model, const std::string& path,
+                                    const std::string& scene_name) {
+  Checkpoint c = read_checkpoint(path);
+  if (c.scene_fingerprint != scene_fingerprint(model.scene))
+    throw std::runtime_error(path + " was taken of another scene than " + scene_name +
+                             " (only duration and checkpoint_interval may change)");
+  if (c.state.bodies.size() != model.bodies.size())
+    throw std::runtime_error(path + " holds " + std::to_string(c.state.bodies.size()) +
+                             " bodies, the scene " + std::to_string(model.bodies.size()));
+  return c;
+}
+
+}  // namespace
+
+// --- Impl ----------------------------------------------------------------------------------
+
+Simulation::Impl::Impl(Model m) : model(std::move(m)) {
+  state = initial_state(model);
+  warnings = model.warnings;
+  for (const InitialOverlap& o : deep_initial_overlaps(model)) warnings.push_back(describe(model, o));
+  const size_t n = model.bodies.size();
+  workspace.loads.force.assign(n, Vec3::Zero());
+  workspace.loads.torque.assign(n, Vec3::Zero());
+  quaternions.resize(4 * n);
+  angular_velocities.resize(3 * n);
+  refresh_views();
+}
+
+void Simulation::Impl::refresh_views() {
+  for (size_t i = 0; i < state.bodies.size(); ++i) {
+    const BodyState& s = state.bodies[i];
+    const Quat q = attitude_quaternion(s.g);
+    quaternions[4 * i] = q.w();
+    quaternions[4 * i + 1] = q.x();
+    quaternions[4 * i + 2] = q.y();
+    quaternions[4 * i + 3] = q.z();
+    const Vec3 w = s.angular_velocity_world();
+    for (int k = 0; k < 3; ++k) angular_velocities[3 * i + k] = w[k];
+  }
+}
+
+void Simulation::Impl::write_row() {
+  workspace.loads.update_active();
+  find_contact_forces(model, state, workspace);
+  output->write(model, state, workspace);
+  written_step = state.step;
+}
+
+void Simulation::Impl::advance_one() {
+  const long long k = state.step;
+  // As `tem run`: a checkpoint where a step begins, before its rows (resuming redoes them).
+  if (output && checkpoint_every > 0 && k % checkpoint_every == 0 && k != first_step)
+    tem::write_checkpoint(directory + "/checkpoint.bin",
+                     make_checkpoint(model.scene, state, workspace.forces, output->sizes()));
+  workspace.loads.update_active();
+  find_contact_forces(model, state, workspace);
+  if (output && k % every == 0 && written_step != k) {
+    output->write(model, state, workspace);
+    written_step = k;
+  }
+  advance(model, state, workspace);
+  stepped = true;
+}
+
+// --- loading -------------------------------------------------------------------------------
+
+Simulation::Simulation(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Simulation::Simulation(Simulation&&) noexcept = default;
+Simulation& Simulation::operator=(Simulation&&) noexcept = default;
+Simulation::~Simulation() = default;
+
+Simulation Simulation::load(const std::string& scene_file) {
+  return Simulation(std::make_unique<Impl>(build_or_throw(read_scene_file(scene_file), scene_file)));
+}
+
+Simulation Simulation::from_json(const std::string& scene_json, const std::string& origin) {
+  return Simulation(
+      std::make_unique<Impl>(build_or_throw(read_scene_text(scene_json, origin), origin)));
+}
+
+Simulation Simulation::from_scene(const SceneDef& scene) {
+  // Through the scene file's text, so that a scene built in code meets every check a file does
+  // (a negative size, NaN, a missing key's default).
+  const std::string origin = scene.source.empty() ? "<scene>" : scene.source;
+  return from_json(write_scene_text(scene), origin);
+}
+
+Simulation Simulation::resume(const std::string& scene_file, const std::string& checkpoint_file) {
+  Simulation sim = load(scene_file);
+  Impl& m = *sim.impl_;
+  const Checkpoint c = read_matching_checkpoint(m.model, checkpoint_file, scene_file);
+  m.state = c.state;
+  restore_memory(c, m.workspace.forces);
+  m.refresh_views();
+  return sim;
+}
+
+Simulation Simulation::resume_recording(const std::string& scene_file,
+                                        const std::string& directory, bool contacts) {
+  Simulation sim = load(scene_file);
+  Impl& m = *sim.impl_;
+  const std::string file = directory + "/checkpoint.bin";
+  const Checkpoint c = read_matching_checkpoint(m.model, file, scene_file);
+  if (c.state.step > sim.total_steps())
+    throw std::runtime_error(file + " is at step " + std::to_string(c.state.step) +
+                             ", beyond the scene's " + std::to_string(sim.total_steps()) +
+                             " steps");
+  if ((c.sizes.contacts >= 0) != contacts)
+    throw std::runtime_error(std::string("the run in ") + directory + " was started " +
+                             (contacts ? "without" : "with") +
+                             " --contacts; resume it the same way");
+  m.state = c.state;
+  restore_memory(c, m.workspace.forces);
+  m.refresh_views();
+  m.output = std::make_unique<RunOutput>(directory, m.model, contacts, &c);
+  m.directory = directory;
+  m.every = steps_per(m.model.scene.output.interval, m.model.scene.time_step);
+  m.checkpoint_every = m.model.scene.output.checkpoint_interval > 0
+                           ? steps_per(m.model.scene.output.checkpoint_interval,
+                                       m.model.scene.time_step)
+                           : 0;
+  m.first_step = m.state.step;
+  return sim;
+}
+
+// --- stepping ------------------------------------------------------------------------------
+
+void Simulation::step(long long n) {
+  for (long long i = 0; i < n; ++i) impl_->advance_one();
+  impl_->refresh_views();
+}
+
+Real Simulation::time() const { return impl_->state.time; }
+long long Simulation::step_count() const { return impl_->state.step; }
+Real Simulation::time_step() const { return impl_->model.scene.time_step; }
+long long Simulation::total_steps() const {
+  return std::llround(impl_->model.scene.duration / impl_->model.scene.time_step);
+}
+void Simulation::set_threads(int threads) { tem::set_threads(threads); }
+
+// --- bodies --------------------------------------------------------------------------------
+
+namespace {
+void check_body(const Model& model, int body) {
+  if (body < 0 || body >= static_cast<int>(model.bodies.size()))
+    throw std::out_of_range("body index " + std::to_string(body) + " is not in 0.." +
+                            std::to_string(static_cast<long long>(model.bodies.size()) - 1));
+}
+}  // namespace
+
+int Simulation::body_count() const { return static_cast<int>(impl_->model.bodies.size()); }
+const std::string& Simulation::body_name(int body) const {
+  check_body(impl_->model, body);
+  return impl_->model.bodies[body].name;
+}
+int Simulation::body_index(const std::string& name) const {
+  for (size_t i = 0; i < impl_->model.bodies.size(); ++i)
+    if (impl_->model.bodies[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+bool Simulation::body_fixed(int body) const {
+  check_body(impl_->model, body);
+  return impl_->model.bodies[body].fixed;
+}
+Real Simulation::mass(int body) const {
+  check_body(impl_->model, body);
+  return impl_->model.bodies[body].inertia.mass;
+}
+Mat3 Simulation::inertia_body(int body) const {
+  check_body(impl_->model, body);
+  return impl_->model.bodies[body].inertia.inertia;
+}
+Mat3 Simulation::inertia_world(int body) const {
+  check_body(impl_->model, body);
+  const Mat3& g = impl_->state.bodies[body].g;
+  return g * impl_->model.bodies[body].inertia.inertia * g.transpose();
+}
+Real Simulation::volume(int body) const {
+  check_body(impl_->model, body);
+  return impl_->model.bodies[body].volume;
+}
+
+Vec3 Simulation::position(int body) const {
+  check_body(impl_->model, body);
+  return impl_->state.bodies[body].x;
+}
+Quat Simulation::attitude(int body) const {
+  check_body(impl_->model, body);
+  return attitude_quaternion(impl_->state.bodies[body].g);
+}
+Vec3 Simulation::velocity(int body) const {
+  check_body(impl_->model, body);
+  return impl_->state.bodies[body].v;
+}
+Vec3 Simulation::angular_velocity(int body) const {
+  check_body(impl_->model, body);
+  return impl_->state.bodies[body].angular_velocity_world();
+}
+
+const Real* Simulation::position_data() const {
+  return impl_->state.bodies.empty() ? nullptr : impl_->state.bodies[0].x.data();
+}
+const Real* Simulation::velocity_data() const {
+  return impl_->state.bodies.empty() ? nullptr : impl_->state.bodies[0].v.data();
+}
+std::ptrdiff_t Simulation::state_stride() const { return sizeof(BodyState); }
+const Real* Simulation::quaternion_data() const { return impl_->quaternions.data(); }
+const Real* Simulation::angular_velocity_data() const {
+  return impl_->angular_velocities.data();
+}
+int Simulation::first_non_finite_body() const {
+  return tem::first_non_finite_body(impl_->state);
+}
+
+// --- external loads ------------------------------------------------------------------------
+
+void Simulation::set_external_force(int body, const Vec3& force) {
+  check_body(impl_->model, body);
+  impl_->workspace.loads.force[body] = force;
+}
+void Simulation::set_external_torque(int body, const Vec3& torque) {
+  check_body(impl_->model, body);
+  impl_->workspace.loads.torque[body] = torque;
+}
+Vec3 Simulation::external_force(int body) const {
+  check_body(impl_->model, body);
+  return impl_->workspace.loads.force[body];
+}
+Vec3 Simulation::external_torque(int body) const {
+  check_body(impl_->model, body);
+  return impl_->workspace.loads.torque[body];
+}
+// Vec3 is three packed doubles (Eigen's fixed vectors carry no padding), so the vector of them
+// is one contiguous array of 3 N doubles.
+static_assert(sizeof(Vec3) == 3 * sizeof(Real));
+Real* Simulation::external_force_data() { return impl_->workspace.loads.force.data()->data(); }
+Real* Simulation::external_torque_data() { return impl_->workspace.loads.torque.data()->data(); }
+void Simulation::clear_external_loads() {
+  for (Vec3& f : impl_->workspace.loads.force) f.setZero();
+  for (Vec3& t : impl_->workspace.loads.torque) t.setZero();
+}
+
+// --- results -------------------------------------------------------------------------------
+
+std::vector<Contact> Simulation::contacts() const {
+  std::vector<Contact> out;
+  if (!impl_->stepped) return out;
+  const Workspace& w = impl_->workspace;
+  out.reserve(w.patches.size());
+  for (size_t k = 0; k < w.patches.size(); ++k) {
+    const ContactPatch& p = w.patches[k];
+    Contact c;
+    c.body_a = p.body_a;
+    c.body_b = p.body_b;
+    c.wall = p.wall;
+    c.point = p.point;
+    c.normal = p.normal;
+    c.depth = p.depth;
+    if (k < w.forces.patch_forces.size()) {
+      c.normal_force = w.forces.patch_forces[k].normal;
+      c.tangential_force = w.forces.patch_forces[k].tangential;
+    }
+    out.push_back(c);
+  }
+  return out;
+}
+
+SystemEnergies Simulation::energies() const {
+  const Energies e = system_energies(impl_->model, impl_->state);
+  return {e.kinetic, e.potential};
+}
+
+std::uint64_t Simulation::state_hash() const { return tem::state_hash(impl_->state); }
+std::string Simulation::state_hash_hex() const { return hash_hex(state_hash()); }
+
+// --- files ---------------------------------------------------------------------------------
+
+void Simulation::record(const std::string& directory, bool contacts) {
+  Impl& m = *impl_;
+  m.output = std::make_unique<RunOutput>(directory, m.model, contacts);
+  m.directory = directory;
+  const SceneDef& scene = m.model.scene;
+  m.every = steps_per(scene.output.interval, scene.time_step);
+  m.checkpoint_every =
+      scene.output.checkpoint_interval > 0 ? steps_per(scene.output.checkpoint_interval,
+                                                       scene.time_step)
+                                           : 0;
+  m.first_step = m.state.step;
+  m.written_step = -1;
+}
+
+bool Simulation::recording() const { return impl_->output != nullptr; }
+
+void Simulation::finish_recording() {
+  Impl& m = *impl_;
+  if (!m.output) return;
+  if (m.written_step != m.state.step) m.write_row();
+  m.output.reset();
+}
+
+void Simulation::write_checkpoint(const std::string& path) {
+  Impl& m = *impl_;
+  const OutputSizes sizes = m.output ? m.output->sizes() : OutputSizes{0, 0, -1};
+  tem::write_checkpoint(path, make_checkpoint(m.model.scene, m.state, m.workspace.forces, sizes));
+}
+
+const SceneDef& Simulation::scene() const { return impl_->model.scene; }
+const std::vector<std::string>& Simulation::warnings() const { return impl_->warnings; }
+
+}  // namespace tem
