@@ -6,18 +6,17 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <optional>
 #include <thread>
 
+#include "api/simulation_impl.hpp"
 #include "commands.hpp"
 #include "contact/initial_overlap.hpp"
 #include "forces/penalty.hpp"
-#include "io/checkpoint.hpp"
-#include "io/run_output.hpp"
 #include "progress.hpp"
 #include "stop_signal.hpp"
 #include "support/parallel.hpp"
-#include "world/state_hash.hpp"
-#include "simulation/step.hpp"
+#include "tem/simulation.hpp"
 
 namespace tem::cli {
 namespace {
@@ -70,99 +69,73 @@ int run_command(const std::string& scene_file, const std::string& out_dir, bool 
   if (threads < 0 && !std::getenv("OMP_NUM_THREADS")) threads = 1;
   if (threads == 0) threads = static_cast<int>(std::thread::hardware_concurrency());
   set_threads(threads);
-  const std::optional<Model> loaded = load_model(scene_file);
-  if (!loaded) return kExitBadInput;
-  const Model& model = *loaded;
-  print_warnings(scene_file, model);
-  const SceneDef& scene = model.scene;
-  warn_about_time_step(scene_file, model);
-
-  const long long total_steps = std::llround(scene.duration / scene.time_step);
-  const long long every = std::max<long long>(1, std::llround(scene.output.interval / scene.time_step));
-  const long long checkpoint_every =
-      scene.output.checkpoint_interval > 0
-          ? std::max<long long>(1, std::llround(scene.output.checkpoint_interval / scene.time_step))
-          : 0;
-  const std::string checkpoint_file = out_dir + "/checkpoint.bin";
-  State state;
-  Workspace workspace;
-  std::optional<Checkpoint> resumed;
+  // The run goes through the public API: `tem run` is a client of tem::Simulation like any
+  // other program. A scene's problems come back one per line, as load_model prints them.
+  std::optional<Simulation> run;
   try {
-    if (resume) {
-      resumed = read_checkpoint(checkpoint_file);
-      if (resumed->scene_fingerprint != scene_fingerprint(scene))
-        throw std::runtime_error(checkpoint_file + " was taken of another scene than " +
-                                 scene_file + " (only duration and checkpoint_interval may change)");
-      if (resumed->state.bodies.size() != model.bodies.size() ||
-          resumed->state.step > total_steps)
-        throw std::runtime_error(checkpoint_file + " is at step " +
-                                 std::to_string(resumed->state.step) + ", beyond the scene's " +
-                                 std::to_string(total_steps) + " steps");
-      if ((resumed->sizes.contacts >= 0) != contacts)
-        throw std::runtime_error(std::string("the run in ") + out_dir + " was started " +
-                                 (contacts ? "without" : "with") +
-                                 " --contacts; resume it the same way");
-      state = resumed->state;
-      restore_memory(*resumed, workspace.forces);
-      std::cerr << "tem run: resuming at step " << state.step << " (t = " << state.time
-                << " s) from " << checkpoint_file << "\n";
-    } else {
-      state = initial_state(model);
-      for (const InitialOverlap& o : deep_initial_overlaps(model))
-        std::cerr << scene_file << ": warning: " << describe(model, o) << "\n";
-    }
+    run.emplace(resume ? Simulation::resume_recording(scene_file, out_dir, contacts)
+                       : Simulation::load(scene_file));
+  } catch (const SceneLoadError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "tem run: " << e.what() << "\n";
     return kExitBadInput;
   }
+  // Warnings: the accepted defects, and (on a fresh start) bodies overlapping at the start.
+  for (const std::string& warning : resume ? run->impl().model.warnings : run->warnings())
+    std::cerr << scene_file << ": warning: " << warning << "\n";
+  warn_about_time_step(scene_file, run->impl().model);
+  if (resume)
+    std::cerr << "tem run: resuming at step " << run->step_count() << " (t = " << run->time()
+              << " s) from " << out_dir << "/checkpoint.bin\n";
+  Simulation& sim = *run;
+  const Model& model = sim.impl().model;
+  const long long total_steps = sim.total_steps();
+  const std::string checkpoint_file = out_dir + "/checkpoint.bin";
 
   StopOnSignal stop;
   try {
-    RunOutput output(out_dir, model, contacts, resumed ? &*resumed : nullptr);
-    auto save_checkpoint = [&] {
-      write_checkpoint(checkpoint_file,
-                       make_checkpoint(scene, state, workspace.forces, output.sizes()));
-    };
-    const long long first_step = state.step;
-    Progress progress(static_cast<double>(total_steps) * scene.time_step, first_step);
+    if (!resume) sim.record(out_dir, contacts);
+    const long long first_step = sim.step_count();
+    Progress progress(static_cast<double>(total_steps) * sim.time_step(), first_step);
     const auto start = std::chrono::steady_clock::now();
-    for (long long k = first_step;; ++k) {
-      // Checkpoints are taken where a step begins, before its rows are written: resuming from
-      // one redoes that step's rows exactly.
+    while (sim.step_count() < total_steps) {
       if (stop.requested()) {
-        save_checkpoint();
+        sim.write_checkpoint(checkpoint_file);
         progress.finish();
-        std::cerr << "tem run: stopped by signal at step " << k << " (t = " << state.time
-                  << " s); every file in " << out_dir << " is complete up to there.\n"
+        std::cerr << "tem run: stopped by signal at step " << sim.step_count()
+                  << " (t = " << sim.time() << " s); every file in " << out_dir
+                  << " is complete up to there.\n"
                   << "  continue with: tem run " << scene_file << " --out " << out_dir
                   << (contacts ? " --contacts" : "") << " --resume\n";
         return kExitInterrupted;
       }
-      if ((checkpoint_every > 0 && k % checkpoint_every == 0 && k != first_step) ||
-          k == total_steps)
-        save_checkpoint();
-      find_contact_forces(model, state, workspace);
-      if (k % every == 0 || k == total_steps) output.write(model, state, workspace);
-      if (k == total_steps) break;
-      advance(model, state, workspace);
-      const int bad = first_non_finite_body(state);
+      sim.step();
+      const int bad = sim.first_non_finite_body();
       if (bad >= 0) {
         progress.finish();
-        std::cerr << scene_file << ": the state of body '" << model.bodies[bad].name
-                  << "' stopped being finite at step " << state.step << " (t = " << state.time
-                  << " s); the results up to the last output row are in " << out_dir << "\n";
+        std::cerr << scene_file << ": the state of body '" << sim.body_name(bad)
+                  << "' stopped being finite at step " << sim.step_count() << " (t = "
+                  << sim.time() << " s); the results up to the last output row are in "
+                  << out_dir << "\n";
         return kExitFailed;
       }
-      progress.update(state.step, state.time);
+      progress.update(sim.step_count(), sim.time());
     }
+    // The checkpoint of the last state, then its rows (resuming with a longer duration redoes
+    // them, as at every checkpoint).
+    sim.write_checkpoint(checkpoint_file);
+    sim.finish_recording();
     progress.finish();
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    print_summary(model, state, workspace, wall);
+    print_summary(model, sim.impl().state, sim.impl().workspace, wall);
     std::cerr << "tem run: results in " << out_dir << "/ (bodies.csv, energy.csv"
               << (contacts ? ", contacts.csv" : "") << ", scene.json, checkpoint.bin"
-              << (scene.output.paraview ? ", tem.pvd and paraview/ for ParaView" : "") << ")\n";
-    if (hash) std::cout << "hash: " << hash_hex(state_hash(state)) << std::endl;
+              << (model.scene.output.paraview ? ", tem.pvd and paraview/ for ParaView" : "")
+              << ")\n";
+    if (hash) std::cout << "hash: " << sim.state_hash_hex() << std::endl;
   } catch (const std::exception& e) {
     std::cerr << "tem run: " << e.what() << "\n";
     return kExitFailed;
