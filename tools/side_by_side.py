@@ -25,7 +25,10 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def default_scenes():
-    bench = sorted(glob.glob(os.path.join(ROOT, "scenes/bench/*.json")))
+    # The 100,000-coin pour is a one-off measurement of its own (docs/benchmarks.md): minutes for
+    # TEM alone, so it is named on the command line when wanted, never run by default.
+    bench = [p for p in sorted(glob.glob(os.path.join(ROOT, "scenes/bench/*.json")))
+             if not p.endswith("coins_100000.json")]
     if bench:
         return bench
     return [os.path.join(ROOT, p) for p in ("scenes/paper/coin.json", "scenes/paper/ring_column.json",
