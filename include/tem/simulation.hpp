@@ -78,7 +78,8 @@ class Simulation {
   // Steps `tem run` takes for the scene's duration: round(duration / time_step).
   long long total_steps() const;
   // Threads for the step's shared work (OpenMP; 0: one per core). The results do not depend on
-  // it. A process-wide setting, like OMP_NUM_THREADS.
+  // it. Process-wide: every Simulation stepped from any thread uses it from then on (without
+  // a call, OpenMP's default, OMP_NUM_THREADS or one per core).
   static void set_threads(int threads);
 
   // --- bodies ---------------------------------------------------------------------------

@@ -1,6 +1,9 @@
 #include "tem/simulation.hpp"
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <thread>
 #include <stdexcept>
 
 #include "api/simulation_impl.hpp"
@@ -31,6 +34,11 @@ Model build_or_throw(const SceneReadResult& read, const std::string& origin) {
     throw SceneLoadError(format_problem(origin, {e.path(), e.reason()}));
   }
 }
+
+// The thread count asked for through the API, for every thread that steps: OpenMP's own
+// setting belongs to the thread that made it, so a Simulation stepped from another thread (a
+// Python worker thread, say) would otherwise run at OpenMP's default. <= 0: never asked.
+std::atomic<int> requested_threads{0};
 
 long long steps_per(Real interval, Real dt) {
   return std::max<long long>(1, std::llround(interval / dt));
@@ -165,6 +173,8 @@ Simulation Simulation::resume_recording(const std::string& scene_file,
 // --- stepping ------------------------------------------------------------------------------
 
 void Simulation::step(long long n) {
+  const int threads = requested_threads.load();
+  if (threads > 0 && max_threads() != threads) tem::set_threads(threads);
   for (long long i = 0; i < n; ++i) impl_->advance_one();
   impl_->refresh_views();
 }
@@ -175,7 +185,12 @@ Real Simulation::time_step() const { return impl_->model.scene.time_step; }
 long long Simulation::total_steps() const {
   return std::llround(impl_->model.scene.duration / impl_->model.scene.time_step);
 }
-void Simulation::set_threads(int threads) { tem::set_threads(threads); }
+void Simulation::set_threads(int threads) {
+  if (threads == 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (threads < 0) return;
+  requested_threads.store(threads);
+  tem::set_threads(threads);
+}
 
 // --- bodies --------------------------------------------------------------------------------
 
