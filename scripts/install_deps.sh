@@ -14,6 +14,7 @@ packages=(
   clang libclang-rt-14-dev   # libFuzzer for the scene parser (scripts/fuzz.sh)
   python3-meshio         # tests: reads the ParaView output back
   python3-numpy python3-matplotlib   # tools/figures.py
+  pybind11-dev python3-pytest python3-dev   # the Python module (python/) and its tests
 )
 missing=()
 for p in "${packages[@]}"; do
