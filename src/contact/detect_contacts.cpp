@@ -62,10 +62,14 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
   w.threads.resize(static_cast<size_t>(max_threads()));
   const bool ahead = !w.reach.empty();
   if (ahead) {
-    // Each block's world nodes, planes and edges once, for all the pairs it is in.
+    // Each block's world nodes, planes and edges once, for all the pairs it is in; blocks in
+    // no pair (bodies in flight) are not placed at all.
     w.world.resize(proxies.size());
+    w.in_pair.assign(proxies.size(), 0);
+    for (const BlockPair& pair : block_pairs) w.in_pair[pair.a] = w.in_pair[pair.b] = 1;
+    for (const WallPair& pair : wall_pairs) w.in_pair[pair.proxy] = 1;
     parallel_for(static_cast<long long>(proxies.size()), 256, [&](long long i) {
-      place_block(block_of(static_cast<int>(i)), poses[i], w.world[i]);
+      if (w.in_pair[i]) place_block(block_of(static_cast<int>(i)), poses[i], w.world[i]);
     });
   }
 

@@ -32,7 +32,8 @@ struct ContactWorkspace {
   // Per body, how far ahead of overlap it makes contact (contact_margins.hpp); empty: contact
   // only after overlap, by the paper's tests.
   std::vector<Real> reach;
-  std::vector<WorldBlock> world;  // every block placed for this step (contact before overlap)
+  std::vector<WorldBlock> world;  // the blocks placed for this step (contact before overlap)
+  std::vector<char> in_pair;      // per block: in some pair this step, so placed
   std::vector<int> order;                  // sorting the patches by body pair
   std::vector<ContactPatch> sorted;        // the patches in that order, swapped with the result
 };
