@@ -1,24 +1,17 @@
 #include "py_simulation.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <utility>
 
 namespace tem_python {
-namespace {
-std::atomic<int> requested_threads{0};  // 0: never set, OpenMP's default (OMP_NUM_THREADS)
-}  // namespace
 
 void set_threads(int threads) {
   if (threads < 0)
     throw py::value_error("set_threads: threads must be 0 or more, got " + std::to_string(threads));
-  if (threads == 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  requested_threads = threads;
   tem::Simulation::set_threads(threads);
 }
 
@@ -43,8 +36,6 @@ tem::Simulation& PySimulation::get() {
     throw std::runtime_error(
         "tem.Simulation is stepping in another thread; one Simulation is used from one thread "
         "at a time");
-  // OpenMP's thread count is per calling thread: this one may not have been told yet.
-  if (const int threads = requested_threads; threads > 0) tem::Simulation::set_threads(threads);
   return sim_;
 }
 

@@ -20,8 +20,7 @@ class PySimulation {
   explicit PySimulation(tem::Simulation sim);
 
   // The simulation, for every call that reads or changes more than the state arrays; raises
-  // RuntimeError while another thread is inside step(). Applies tem.set_threads' count to the
-  // calling thread.
+  // RuntimeError while another thread is inside step().
   tem::Simulation& get();
   // The simulation without the check: for handing out views, whose pointers never change.
   tem::Simulation& raw() { return sim_; }
@@ -42,9 +41,8 @@ class PySimulation {
   std::unique_ptr<bool[]> fixed_;
 };
 
-// tem.set_threads(n): remembered for the whole process and applied by every step(), whichever
-// Python thread calls it (OpenMP's omp_set_num_threads, which tem::Simulation::set_threads
-// calls, sets the count of the calling thread only). 0: one per core.
+// tem.set_threads(n): tem::Simulation::set_threads, which holds for every thread that steps.
+// 0: one per core; a negative count is a ValueError.
 void set_threads(int threads);
 
 // An (N, ...) float64 or bool array on memory owned by `owner` (the Python Simulation), which

@@ -86,6 +86,24 @@ void Simulation::Impl::refresh_views() {
   }
 }
 
+void Simulation::Impl::restore(const Checkpoint& checkpoint) {
+  state = checkpoint.state;
+  restore_memory(checkpoint, workspace.forces);
+  refresh_views();
+}
+
+void Simulation::Impl::start_recording(const std::string& dir, std::unique_ptr<RunOutput> out) {
+  output = std::move(out);
+  directory = dir;
+  const SceneDef& scene = model.scene;
+  every = steps_per(scene.output.interval, scene.time_step);
+  checkpoint_every = scene.output.checkpoint_interval > 0
+                         ? steps_per(scene.output.checkpoint_interval, scene.time_step)
+                         : 0;
+  first_step = state.step;
+  written_step = -1;
+}
+
 void Simulation::Impl::write_row() {
   workspace.loads.update_active();
   find_contact_forces(model, state, workspace);
@@ -134,11 +152,7 @@ Simulation Simulation::from_scene(const SceneDef& scene) {
 
 Simulation Simulation::resume(const std::string& scene_file, const std::string& checkpoint_file) {
   Simulation sim = load(scene_file);
-  Impl& m = *sim.impl_;
-  const Checkpoint c = read_matching_checkpoint(m.model, checkpoint_file, scene_file);
-  m.state = c.state;
-  restore_memory(c, m.workspace.forces);
-  m.refresh_views();
+  sim.impl_->restore(read_matching_checkpoint(sim.impl_->model, checkpoint_file, scene_file));
   return sim;
 }
 
@@ -156,17 +170,8 @@ Simulation Simulation::resume_recording(const std::string& scene_file,
     throw std::runtime_error(std::string("the run in ") + directory + " was started " +
                              (contacts ? "without" : "with") +
                              " --contacts; resume it the same way");
-  m.state = c.state;
-  restore_memory(c, m.workspace.forces);
-  m.refresh_views();
-  m.output = std::make_unique<RunOutput>(directory, m.model, contacts, &c);
-  m.directory = directory;
-  m.every = steps_per(m.model.scene.output.interval, m.model.scene.time_step);
-  m.checkpoint_every = m.model.scene.output.checkpoint_interval > 0
-                           ? steps_per(m.model.scene.output.checkpoint_interval,
-                                       m.model.scene.time_step)
-                           : 0;
-  m.first_step = m.state.step;
+  m.restore(c);
+  m.start_recording(directory, std::make_unique<RunOutput>(directory, m.model, contacts, &c));
   return sim;
 }
 
@@ -330,17 +335,8 @@ std::string Simulation::state_hash_hex() const { return hash_hex(state_hash()); 
 // --- files ---------------------------------------------------------------------------------
 
 void Simulation::record(const std::string& directory, bool contacts) {
-  Impl& m = *impl_;
-  m.output = std::make_unique<RunOutput>(directory, m.model, contacts);
-  m.directory = directory;
-  const SceneDef& scene = m.model.scene;
-  m.every = steps_per(scene.output.interval, scene.time_step);
-  m.checkpoint_every =
-      scene.output.checkpoint_interval > 0 ? steps_per(scene.output.checkpoint_interval,
-                                                       scene.time_step)
-                                           : 0;
-  m.first_step = m.state.step;
-  m.written_step = -1;
+  impl_->start_recording(directory,
+                         std::make_unique<RunOutput>(directory, impl_->model, contacts));
 }
 
 bool Simulation::recording() const { return impl_->output != nullptr; }

@@ -34,6 +34,9 @@ struct Simulation::Impl {
 
   explicit Impl(Model m);
   void refresh_views();
+  void restore(const Checkpoint& checkpoint);  // state and contact memory, then the views
+  // Output from the current step on into `dir` through `out` (new, or reopened at a checkpoint).
+  void start_recording(const std::string& dir, std::unique_ptr<RunOutput> out);
   void advance_one();
   void write_row();  // the current state's row: its contact forces first
 };
