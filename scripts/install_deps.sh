@@ -15,6 +15,8 @@ packages=(
   python3-meshio         # tests: reads the ParaView output back
   python3-numpy python3-matplotlib   # tools/figures.py
   pybind11-dev python3-pytest python3-dev   # the Python module (python/) and its tests
+  libassimp-dev          # reads mesh files (OBJ, STL, PLY, OFF)
+  libcgal-dev            # checks meshes and cuts them exactly into convex blocks
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -14,7 +15,14 @@
 
 namespace tem {
 
-enum class ShapeType { prism, ring, box, convex, compound };
+enum class ShapeType { prism, ring, box, convex, compound, mesh };
+// How a mesh shape is cut into convex blocks: exactly (the blocks' union is the mesh) or
+// approximately (few blocks, each the convex hull of a part of the mesh).
+enum class MeshCutting { exact, approximate };
+
+// A mesh shape once read, checked and cut (src/mesh/mesh_body.hpp); shared by every body, and
+// every copy made by `fill`, that uses the same file with the same settings.
+struct MeshBody;
 enum class Axis { x, y, z };
 enum class IntegratorKind { default_, paper };
 enum class ContactModel { semm, semm_paper, penalty };
@@ -47,6 +55,16 @@ struct ShapeDef {
 
   Vec3 size = Vec3::Zero();  // box edge lengths
   std::vector<Vec3> points;  // convex: the block is the convex hull of these points
+
+  // mesh: a closed triangle mesh from `file` (as written: relative to the scene file, or
+  // absolute), every vertex multiplied by `scale`, cut into convex blocks by `cutting` (at most
+  // `max_blocks` when approximate). The reader resolves `file_path` and fills `mesh`.
+  std::string file;
+  std::string file_path;
+  Real scale = 1.0;
+  MeshCutting cutting = MeshCutting::approximate;
+  int max_blocks = 32;
+  std::shared_ptr<const MeshBody> mesh;
 
   // compound: parts, each a shape placed in this shape's frame by `position` and `rotation`.
   std::vector<ShapeDef> parts;

@@ -1,0 +1,495 @@
+// Everything TEM asks of CGAL: the self-intersection test of check_mesh() and the exact convex
+// decomposition (Nef polyhedra). The only translation unit that includes CGAL's headers.
+
+// With -fsanitize, GCC 12 reports "may be used uninitialized" inside std::pair for the
+// default-constructed Plane_3 and Direction_3 that CGAL's Epic_converter returns on failure
+// (CGAL/Epic_converter.h). The warning comes after inlining, at the std::pair line, so it cannot
+// be fenced around CGAL's includes; it is switched off for this file only (clang, which builds
+// the fuzz target, has no such warning).
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+
+#include "mesh/cgal_operations.hpp"
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Nef_polyhedron_3.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Polyhedron_3.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/convex_decomposition_3.h>
+#include <CGAL/convex_hull_3.h>
+#include <CGAL/exceptions.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <iterator>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <unordered_map>
+
+#include "mass/surface_integrals.hpp"
+
+namespace tem {
+namespace {
+
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+using Inexact = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+// The mesh as a CGAL surface whose face k is face k of `mesh` (faces are added in order, and a
+// Surface_mesh numbers its faces in the order they are added). Throws MeshError where CGAL cannot
+// link a face into the surface (an edge with more than two faces, or inconsistent orientation):
+// check_mesh() reports those before it asks for self-intersections.
+template <class Kernel>
+CGAL::Surface_mesh<typename Kernel::Point_3> surface_mesh(const TriangleMesh& mesh) {
+  using Surface = CGAL::Surface_mesh<typename Kernel::Point_3>;
+  Surface surface;
+  surface.reserve(static_cast<typename Surface::size_type>(mesh.vertices.size()),
+                  static_cast<typename Surface::size_type>(3 * mesh.faces.size() / 2),
+                  static_cast<typename Surface::size_type>(mesh.faces.size()));
+  std::vector<typename Surface::Vertex_index> vertex;
+  vertex.reserve(mesh.vertices.size());
+  for (const Vec3& p : mesh.vertices) vertex.push_back(surface.add_vertex({p.x(), p.y(), p.z()}));
+  const int count = static_cast<int>(mesh.vertices.size());
+  for (size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& t = mesh.faces[f];
+    for (int v : t)
+      if (v < 0 || v >= count)
+        throw MeshError(mesh.source + ": face " + std::to_string(f) + " names vertex " +
+                        std::to_string(v) + ", which does not exist");
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
+      throw MeshError(mesh.source + ": face " + std::to_string(f) + " repeats a vertex");
+    if (surface.add_face(vertex[t[0]], vertex[t[1]], vertex[t[2]]) == Surface::null_face())
+      throw MeshError(mesh.source + ": face " + std::to_string(f) + " (vertices " +
+                      std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " +
+                      std::to_string(t[2]) +
+                      ") cannot be joined to its neighbours: an edge has more than two faces, a "
+                      "vertex's faces do not form one fan, or the faces are not consistently "
+                      "oriented");
+  }
+  return surface;
+}
+
+}  // namespace
+
+std::vector<std::pair<int, int>> self_intersecting_faces(const TriangleMesh& mesh, int max_pairs) {
+  using Surface = CGAL::Surface_mesh<Inexact::Point_3>;
+  if (max_pairs <= 0 || mesh.faces.empty()) return {};
+  const Surface surface = surface_mesh<Inexact>(mesh);
+  // The yes/no test stops at the first intersection: the common case, a clean mesh, pays for one
+  // sweep only.
+  if (!PMP::does_self_intersect(surface)) return {};
+  std::vector<std::pair<Surface::Face_index, Surface::Face_index>> found;
+  PMP::self_intersections(surface, std::back_inserter(found));
+  std::vector<std::pair<int, int>> pairs;
+  pairs.reserve(found.size());
+  for (const auto& [a, b] : found) {
+    const int i = static_cast<int>(a.idx()), j = static_cast<int>(b.idx());
+    // CGAL reports a degenerate face as (f, f); check_mesh() names those as degenerate itself.
+    if (i != j) pairs.emplace_back(std::min(i, j), std::max(i, j));
+  }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  if (pairs.size() > static_cast<size_t>(max_pairs)) pairs.resize(static_cast<size_t>(max_pairs));
+  return pairs;
+}
+
+namespace {
+
+using Exact = CGAL::Exact_predicates_exact_constructions_kernel;
+using ExactPoint = Exact::Point_3;
+using Nef = CGAL::Nef_polyhedron_3<Exact>;
+using ExactPolyhedron = CGAL::Polyhedron_3<Exact>;
+
+// Pieces smaller than this fraction of the mesh's volume are slivers (CGAL 5.5 leaves some of
+// about 1e-9 of the volume next to its cuts), and at most this fraction may be dropped in all.
+constexpr Real kSliverFraction = 1e-9;
+constexpr Real kDroppedFraction = 1e-10;
+// A piece that Block rejects for features below its tolerances is replaced by the convex hull of
+// its welded nodes, and two pieces are joined into their hull, only when that changes the volume
+// by at most this fraction of the mesh's: what it removes is rounding (nodes 1e-17 apart, faces
+// 1e-16 out of one plane), never a feature of the mesh.
+constexpr Real kReshapeFraction = 1e-14;
+// Nodes of a piece closer than this (relative to its size) are one node: Block takes them for
+// one point (its own tolerance is 1e-9; twice that keeps a welded cloud clear of it).
+constexpr Real kWeldFraction = 2e-9;
+// The blocks' volumes must add up to the mesh's to this relative tolerance: far above the
+// rounding of CGAL's exact vertices to double, far below any missing or doubled piece.
+constexpr Real kVolumeTolerance = 1e-9;
+
+// One convex volume of the decomposition and the block made of it.
+struct Piece {
+  PolyhedronDef def;                             // a valid block unless `defect` says why not
+  Real volume = 0;                               // the exact volume of the piece, rounded
+  Vec3 low = Vec3::Zero(), high = Vec3::Zero();  // bounds of def.points
+  std::vector<std::pair<Vec3, Real>> planes;     // of def.polygons: unit normal n, n . x
+  std::string defect;                            // empty when Block accepts def
+};
+
+std::string describe_point(const Vec3& p) {
+  std::ostringstream s;
+  s << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  return s.str();
+}
+
+// Joins the facets that lie in one plane into one polygon and removes the corners where the loop
+// runs straight on. CGAL splits a volume's face where the volumes beyond it change, so a block
+// face may come as several facets, and the splitting vertices stay on its edges. Returns the
+// polygon, empty where the facets have no area, or nullopt where they do not form one loop.
+std::optional<std::vector<int>> merge_facets(const std::vector<ExactPoint>& points,
+                                             const std::vector<std::vector<int>>& facets,
+                                             const std::vector<int>& group) {
+  std::map<std::pair<int, int>, int> directed;
+  for (int f : group)
+    for (size_t i = 0; i < facets[f].size(); ++i)
+      ++directed[{facets[f][i], facets[f][(i + 1) % facets[f].size()]}];
+  // Edges shared by two facets of the group run both ways and are inside the polygon.
+  std::map<int, int> next;
+  for (const auto& [edge, count] : directed) {
+    if (count != 1) return std::nullopt;
+    if (directed.count({edge.second, edge.first})) continue;
+    if (!next.emplace(edge.first, edge.second).second) return std::nullopt;
+  }
+  if (next.empty()) return std::vector<int>{};
+  std::vector<int> loop{next.begin()->first};
+  for (int at = next.at(loop.front()); at != loop.front(); at = next.at(at)) {
+    if (loop.size() > next.size() || !next.count(at)) return std::nullopt;
+    loop.push_back(at);
+  }
+  if (loop.size() != next.size()) return std::nullopt;
+  for (bool changed = true; changed && loop.size() >= 3;) {
+    changed = false;
+    for (size_t i = 0; i < loop.size() && loop.size() >= 3; ++i) {
+      const size_t prev = (i + loop.size() - 1) % loop.size(), after = (i + 1) % loop.size();
+      if (CGAL::collinear(points[loop[prev]], points[loop[i]], points[loop[after]])) {
+        loop.erase(loop.begin() + static_cast<std::ptrdiff_t>(i));
+        changed = true;
+      }
+    }
+  }
+  if (loop.size() < 3) loop.clear();
+  return loop;
+}
+
+// Bounds and face planes of piece.def, to find its neighbours.
+void set_geometry(Piece& piece) {
+  piece.planes.clear();
+  if (piece.def.points.empty()) return;
+  const auto& pts = piece.def.points;
+  piece.low = piece.high = pts.front();
+  for (const Vec3& p : pts) {
+    piece.low = piece.low.cwiseMin(p);
+    piece.high = piece.high.cwiseMax(p);
+  }
+  for (const auto& loop : piece.def.polygons) {
+    Vec3 n = Vec3::Zero();  // Newell's normal
+    for (size_t i = 0; i < loop.size(); ++i)
+      n += pts[loop[i]].cross(pts[loop[(i + 1) % loop.size()]]);
+    if (n.norm() == 0) continue;
+    n.normalize();
+    piece.planes.emplace_back(n, n.dot(pts[loop[0]]));
+  }
+}
+
+// The convex hull of `points` (Qhull, which merges faces that are coplanar to rounding) with
+// points closer than the weld distance taken once, as a block. nullopt when Block rejects it.
+std::optional<std::pair<PolyhedronDef, Real>> welded_hull(const std::vector<Vec3>& points) {
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& p : points) mean += p;
+  mean /= static_cast<Real>(std::max<size_t>(points.size(), 1));
+  Real size = 0;
+  for (const Vec3& p : points) size = std::max(size, (p - mean).norm());
+  std::vector<Vec3> kept;
+  for (const Vec3& p : points)
+    if (std::none_of(kept.begin(), kept.end(),
+                     [&](const Vec3& q) { return (p - q).norm() <= kWeldFraction * size; }))
+      kept.push_back(p);
+  try {
+    PolyhedronDef def = convex_hull(kept);
+    const Real volume = Block(def).volume();
+    return std::make_pair(std::move(def), volume);
+  } catch (const GeometryError&) {
+    return std::nullopt;
+  }
+}
+
+// A piece from a closed, convex shell of exact points and facets (any orientation). Returns
+// nullopt for an empty shell (no volume), which CGAL 5.5 sometimes reports as a volume.
+// `reshape` is the largest volume change allowed to make it a valid block (welded_hull).
+std::optional<Piece> make_piece(const std::vector<ExactPoint>& points,
+                                std::vector<std::vector<int>> facets, Real reshape) {
+  if (points.empty()) return std::nullopt;
+  Exact::FT volume = 0;
+  for (const auto& facet : facets)
+    for (size_t i = 1; i + 1 < facet.size(); ++i)
+      volume += CGAL::volume(points[0], points[facet[0]], points[facet[i]], points[facet[i + 1]]);
+  if (CGAL::is_zero(volume)) return std::nullopt;
+  if (CGAL::is_negative(volume)) {
+    volume = -volume;
+    for (auto& facet : facets) std::reverse(facet.begin(), facet.end());
+  }
+  Piece piece;
+  piece.volume = CGAL::to_double(volume);
+
+  // Facets grouped by their oriented plane (exactly: a convex piece has one face per plane).
+  std::vector<Exact::Plane_3> planes;
+  std::vector<std::vector<int>> groups;
+  for (size_t f = 0; f < facets.size(); ++f) {
+    const auto& facet = facets[f];
+    std::optional<Exact::Plane_3> plane;
+    for (size_t i = 1; i + 1 < facet.size() && !plane; ++i)
+      if (!CGAL::collinear(points[facet[0]], points[facet[i]], points[facet[i + 1]]))
+        plane = Exact::Plane_3(points[facet[0]], points[facet[i]], points[facet[i + 1]]);
+    if (!plane) continue;  // a facet without area bounds nothing
+    const auto same = std::find(planes.begin(), planes.end(), *plane);
+    if (same == planes.end()) {
+      planes.push_back(*plane);
+      groups.push_back({static_cast<int>(f)});
+    } else {
+      groups[static_cast<size_t>(same - planes.begin())].push_back(static_cast<int>(f));
+    }
+  }
+  for (const auto& group : groups) {
+    const auto polygon = merge_facets(points, facets, group);
+    if (!polygon)
+      piece.defect = "the facets in one plane do not form one polygon";
+    else if (!polygon->empty())
+      piece.def.polygons.push_back(*polygon);
+  }
+
+  // Keep the nodes that are corners of some face; the others were splitting vertices.
+  std::vector<int> renumber(points.size(), -1);
+  for (auto& polygon : piece.def.polygons)
+    for (int& node : polygon) {
+      if (renumber[node] < 0) {
+        renumber[node] = static_cast<int>(piece.def.points.size());
+        const ExactPoint& p = points[node];
+        piece.def.points.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()),
+                                      CGAL::to_double(p.z()));
+      }
+      node = renumber[node];
+    }
+  set_geometry(piece);
+  if (piece.defect.empty()) try {
+      static_cast<void>(Block(piece.def));  // for its checks only
+      return piece;
+    } catch (const GeometryError& e) {
+      piece.defect = e.what();
+    }
+
+  // Rejected for nodes closer than Block's tolerance or corners straight to it: those come from
+  // cuts through edges that the mesh's rounding left a hair off straight (its quads are not
+  // quite planar). Their hull, welded, is the piece less that rounding.
+  if (auto hull = welded_hull(piece.def.points);
+      hull && std::abs(hull->second - piece.volume) <= reshape) {
+    piece.def = std::move(hull->first);
+    piece.defect.clear();
+    set_geometry(piece);
+  }
+  return piece;
+}
+
+std::optional<Piece> piece_from_polyhedron(const ExactPolyhedron& shell, Real reshape) {
+  std::vector<ExactPoint> points;
+  std::unordered_map<const void*, int> index;
+  for (auto v = shell.vertices_begin(); v != shell.vertices_end(); ++v) {
+    index.emplace(&*v, static_cast<int>(points.size()));
+    points.push_back(v->point());
+  }
+  std::vector<std::vector<int>> facets;
+  for (auto f = shell.facets_begin(); f != shell.facets_end(); ++f) {
+    std::vector<int> facet;
+    auto h = f->facet_begin();
+    do facet.push_back(index.at(&*h->vertex()));
+    while (++h != f->facet_begin());
+    facets.push_back(std::move(facet));
+  }
+  return make_piece(points, std::move(facets), reshape);
+}
+
+// The union of two pieces that meet, as one block, when that union is convex: then their convex
+// hull has the sum of their volumes (they do not overlap), here to `reshape`.
+std::optional<Piece> convex_union(const Piece& a, const Piece& b, Real reshape) {
+  std::vector<Vec3> points = a.def.points;
+  points.insert(points.end(), b.def.points.begin(), b.def.points.end());
+  auto hull = welded_hull(points);
+  if (!hull || std::abs(hull->second - (a.volume + b.volume)) > reshape) return std::nullopt;
+  Piece joined;
+  joined.def = std::move(hull->first);
+  joined.volume = a.volume + b.volume;
+  set_geometry(joined);
+  return joined;
+}
+
+bool boxes_meet(const Piece& a, const Piece& b, Real margin) {
+  return (a.low.array() <= b.high.array() + margin).all() &&
+         (b.low.array() <= a.high.array() + margin).all();
+}
+
+// Whether a face of `a` and one of `b` lie in one plane (roughly: this only saves hulls), facing
+// each other: only pieces that meet at a face can have a convex union.
+bool faces_meet(const Piece& a, const Piece& b, Real margin) {
+  for (const auto& [na, da] : a.planes)
+    for (const auto& [nb, db] : b.planes)
+      if (na.dot(nb) < -1 + 1e-6 && std::abs(da + db) <= margin) return true;
+  return false;
+}
+
+// Joins neighbouring blocks whose union is convex, until no two can be joined. CGAL cuts along
+// every reflex edge, however slight: a mesh's quads, each split into two triangles a hair off one
+// plane by rounding, have one at each diagonal, and many of the blocks cut there join again here
+// (the paper's ring: 90 blocks before, 48 after).
+void coalesce(std::vector<Piece>& blocks, Real reshape, Real margin) {
+  for (bool joined = true; joined;) {
+    joined = false;
+    for (size_t i = 0; i < blocks.size(); ++i)
+      for (size_t j = i + 1; j < blocks.size(); ++j) {
+        if (!boxes_meet(blocks[i], blocks[j], margin) || !faces_meet(blocks[i], blocks[j], margin))
+          continue;
+        if (auto both = convex_union(blocks[i], blocks[j], reshape)) {
+          blocks[i] = std::move(*both);
+          blocks.erase(blocks.begin() + static_cast<std::ptrdiff_t>(j));
+          j = i;  // blocks[i] grew: try the others again
+          joined = true;
+        }
+      }
+  }
+}
+
+// The checks that keep CGAL from undefined behaviour: it assumes a closed, oriented,
+// non-self-intersecting surface and does not check (its preconditions are off in release).
+// Returns the mesh's volume.
+template <class Surface>
+Real check_input(const TriangleMesh& mesh, const Surface& surface) {
+  for (auto h : surface.halfedges())
+    if (surface.is_border(h))
+      throw MeshError(mesh.source + ": edge " + std::to_string(surface.source(h).idx()) + "-" +
+                      std::to_string(surface.target(h).idx()) +
+                      " has a face on one side only: the mesh is not closed");
+  const auto crossing = self_intersecting_faces(mesh, 1);
+  if (!crossing.empty())
+    throw MeshError(mesh.source + ": faces " + std::to_string(crossing[0].first) + " and " +
+                    std::to_string(crossing[0].second) + " intersect");
+  std::vector<std::array<Vec3, 3>> triangles;
+  triangles.reserve(mesh.faces.size());
+  for (const auto& f : mesh.faces)
+    triangles.push_back({mesh.vertices[f[0]], mesh.vertices[f[1]], mesh.vertices[f[2]]});
+  const Real volume = surface_mass_properties(triangles).volume;
+  if (!(volume > 0))
+    throw MeshError(mesh.source + ": the mesh encloses no positive volume (" +
+                    std::to_string(volume) + "): its faces point inwards or it is flat");
+  return volume;
+}
+
+MeshDecomposition decompose(const TriangleMesh& mesh) {
+  MeshDecomposition result;
+  if (mesh.faces.empty()) throw MeshError(mesh.source + ": the mesh has no faces");
+  for (size_t i = 0; i < mesh.vertices.size(); ++i)
+    if (!mesh.vertices[i].allFinite())
+      throw MeshError(mesh.source + ": vertex " + std::to_string(i) + " is not finite");
+  const auto surface = surface_mesh<Exact>(mesh);
+  result.mesh_volume = check_input(mesh, surface);
+
+  Nef nef(surface);
+  CGAL::convex_decomposition_3(nef);
+
+  // The first volume of a Nef polyhedron is the unbounded one outside; the others that are
+  // marked are inside the mesh, each convex after the decomposition, with one shell.
+  const Real reshape = kReshapeFraction * result.mesh_volume;
+  std::vector<Piece> pieces;
+  auto volume = nef.volumes_begin();
+  for (++volume; volume != nef.volumes_end(); ++volume) {
+    if (!volume->mark()) continue;
+    if (std::distance(volume->shells_begin(), volume->shells_end()) != 1)
+      throw MeshError(mesh.source + ": CGAL's convex decomposition returned a piece with " +
+                      "a cavity (not convex)");
+    ExactPolyhedron shell;
+    nef.convert_inner_shell_to_polyhedron(volume->shells_begin(), shell);
+    if (auto piece = piece_from_polyhedron(shell, reshape)) pieces.push_back(std::move(*piece));
+  }
+
+  // Slivers, and pieces Block rejects (too thin for its tolerances), join a neighbour when
+  // their union is convex; otherwise they are dropped if they are negligible in all.
+  const Real sliver = kSliverFraction * result.mesh_volume;
+  std::vector<Piece> blocks, slivers;
+  for (Piece& p : pieces)
+    (p.defect.empty() && p.volume >= sliver ? blocks : slivers).push_back(std::move(p));
+  Vec3 low = mesh.vertices.front(), high = low;
+  for (const Vec3& p : mesh.vertices) {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  const Real margin = kVolumeTolerance * (high - low).norm();
+  Real dropped = 0;
+  std::string first_dropped;
+  for (const Piece& s : slivers) {
+    ++result.merged_slivers;
+    bool joined = false;
+    for (Piece& b : blocks) {
+      if (!boxes_meet(b, s, margin)) continue;
+      if (auto both = convex_union(b, s, reshape)) {
+        b = std::move(*both);
+        joined = true;
+        break;
+      }
+    }
+    if (joined) continue;
+    dropped += s.volume;
+    if (first_dropped.empty())
+      first_dropped =
+          "near " + describe_point(s.low) + (s.defect.empty() ? "" : " (" + s.defect + ")");
+  }
+  if (dropped > kDroppedFraction * result.mesh_volume)
+    throw MeshError(mesh.source + ": CGAL's convex decomposition left thin pieces of volume " +
+                    std::to_string(dropped) + " (" + std::to_string(dropped / result.mesh_volume) +
+                    " of the mesh) that join no neighbour into a convex block, e.g. " +
+                    first_dropped);
+  if (dropped > 0) {
+    std::ostringstream w;
+    w << mesh.source << ": dropped thin pieces of CGAL's convex decomposition, volume " << dropped
+      << " (" << dropped / result.mesh_volume << " of the mesh), " << first_dropped;
+    result.warnings.push_back(w.str());
+  }
+  coalesce(blocks, reshape, margin);
+  for (Piece& b : blocks) result.blocks.push_back(std::move(b.def));
+  return result;
+}
+
+}  // namespace
+
+MeshDecomposition exact_decomposition(const TriangleMesh& mesh) {
+  const auto start = std::chrono::steady_clock::now();
+  MeshDecomposition result;
+  try {
+    result = decompose(mesh);
+  } catch (const MeshError&) {
+    throw;
+  } catch (const CGAL::Failure_exception& e) {
+    throw MeshError(mesh.source + ": CGAL's exact convex decomposition failed: " + e.what());
+  } catch (const std::exception& e) {
+    throw MeshError(mesh.source + ": the exact convex decomposition failed: " + e.what());
+  }
+  // Never pass on a wrong cut: the blocks must be convex and fill the mesh's volume.
+  for (size_t i = 0; i < result.blocks.size(); ++i) {
+    const Block block(result.blocks[i]);
+    if (!block.convex())
+      throw MeshError(mesh.source + ": exact cutting gave a non-convex block " + std::to_string(i));
+    result.blocks_volume += block.volume();
+  }
+  const Real error = std::abs(result.blocks_volume - result.mesh_volume);
+  if (error > kVolumeTolerance * result.mesh_volume)
+    throw MeshError(mesh.source + ": the exact cut's blocks have volume " +
+                    std::to_string(result.blocks_volume) + ", the mesh " +
+                    std::to_string(result.mesh_volume) +
+                    ": CGAL's convex decomposition is wrong for this mesh");
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace tem

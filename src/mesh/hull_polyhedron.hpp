@@ -1,0 +1,24 @@
+// Convex hulls of mesh parts (Qhull): their volume, for scoring cuts, and a polyhedron that
+// Block accepts, for the blocks themselves.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "geometry/block.hpp"
+
+namespace tem {
+
+// Volume of the convex hull of the points; 0 when they span no volume.
+Real hull_volume(const std::vector<Vec3>& points);
+
+// The convex hull of any points (repeats and interior points allowed) as a PolyhedronDef that
+// Block accepts, or nothing when they span no usable volume. Hull vertices closer than `weld`
+// are welded first (one of them kept), and any vertex that would break one of Block's checks
+// with a tenth of its tolerance (a corner too flat, a facet not flat enough, a sliver facet) is
+// dropped and the hull taken again. The result is the hull of a subset of the points, so it
+// lies inside their hull (and a part's block inside its cell); the points dropped are
+// near-repeats and corners within a hair of their neighbours' hull, so it is hardly smaller.
+std::optional<PolyhedronDef> hull_block(const std::vector<Vec3>& points, Real weld);
+
+}  // namespace tem

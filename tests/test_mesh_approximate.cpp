@@ -1,0 +1,275 @@
+// The approximate cutter (approximate_decomposition, issue 12): convex meshes stay one block,
+// boxes are cut exactly, holes stay open, blocks never overlap and cover the mesh, the result
+// is the same every run; and the plane cut underneath keeps volumes and corners.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "mesh/mesh_decomposition.hpp"
+#include "mesh/mesh_check.hpp"
+#include "mesh/mesh_distance.hpp"
+#include "mesh/plane_cut.hpp"
+#include "support/mesh_shapes.hpp"
+#include "support/parallel.hpp"
+#include "support/scan_meshes.hpp"
+#include "support/simulate.hpp"
+
+namespace tem {
+namespace {
+
+using testing_support::report;
+
+// A latitude-longitude sphere: its quads are planar, so it is convex and its own hull.
+TriangleMesh sphere_mesh(int n, int m) {
+  TriangleMesh mesh;
+  mesh.source = "sphere";
+  const Real pi = std::numbers::pi;
+  mesh.vertices.push_back(Vec3::UnitZ());
+  for (int j = 1; j < m; ++j)
+    for (int i = 0; i < n; ++i)
+      mesh.vertices.push_back(Vec3(std::sin(pi * j / m) * std::cos(2 * pi * i / n),
+                                   std::sin(pi * j / m) * std::sin(2 * pi * i / n),
+                                   std::cos(pi * j / m)));
+  mesh.vertices.push_back(-Vec3::UnitZ());
+  auto at = [&](int i, int ring) { return 1 + (ring - 1) * n + (i + n) % n; };
+  const int south = static_cast<int>(mesh.vertices.size()) - 1;
+  for (int i = 0; i < n; ++i) {
+    mesh.faces.push_back({0, at(i, 1), at(i + 1, 1)});
+    for (int ring = 1; ring + 1 < m; ++ring) {
+      mesh.faces.push_back({at(i, ring), at(i, ring + 1), at(i + 1, ring + 1)});
+      mesh.faces.push_back({at(i, ring), at(i + 1, ring + 1), at(i + 1, ring)});
+    }
+    mesh.faces.push_back({south, at(i + 1, m - 1), at(i, m - 1)});
+  }
+  return mesh;
+}
+
+TriangleMesh box_mesh() {
+  return testing_support::extruded_mesh({{{0, 0}, {2, 0}, {2, 1}, {0, 1}}}, {{0, 1, 2}, {0, 2, 3}},
+                                        1.5, "box");
+}
+
+struct Plane {
+  Vec3 normal;  // outward, unit
+  Real offset;
+};
+
+// The block's face planes as Block computes them (Newell normal, through the loop's centre).
+std::vector<Plane> face_planes(const PolyhedronDef& def) {
+  std::vector<Plane> planes;
+  for (const auto& loop : def.polygons) {
+    Vec3 n = Vec3::Zero(), centre = Vec3::Zero();
+    for (size_t i = 0; i < loop.size(); ++i) {
+      n += def.points[loop[i]].cross(def.points[loop[(i + 1) % loop.size()]]);
+      centre += def.points[loop[i]];
+    }
+    n.normalize();
+    planes.push_back({n, n.dot(centre) / static_cast<Real>(loop.size())});
+  }
+  return planes;
+}
+
+bool inside_or_on(const PolyhedronDef& def, const Vec3& p, Real tolerance) {
+  for (const Plane& plane : face_planes(def))
+    if (plane.normal.dot(p) - plane.offset > tolerance) return false;
+  return true;
+}
+
+// A face plane of one block with every node of the other outside or on it (within tolerance).
+bool separated_by_a_face(const PolyhedronDef& a, const PolyhedronDef& b, Real tolerance) {
+  for (const auto& [one, other] : {std::pair{&a, &b}, std::pair{&b, &a}})
+    for (const Plane& plane : face_planes(*one)) {
+      bool all_outside = true;
+      for (const Vec3& p : other->points)
+        if (plane.normal.dot(p) - plane.offset < -tolerance) all_outside = false;
+      if (all_outside) return true;
+    }
+  return false;
+}
+
+Real mesh_size(const TriangleMesh& mesh) {
+  Vec3 lo = mesh.vertices[0], hi = lo;
+  for (const Vec3& v : mesh.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  return (hi - lo).norm();
+}
+
+// Every block is a valid, convex Block; no two overlap.
+void expect_valid_and_disjoint(const MeshDecomposition& d, Real size) {
+  for (const PolyhedronDef& def : d.blocks) {
+    Block block(def);  // throws if Block refuses it
+    EXPECT_TRUE(block.convex());
+  }
+  for (size_t i = 0; i < d.blocks.size(); ++i)
+    for (size_t j = i + 1; j < d.blocks.size(); ++j)
+      EXPECT_TRUE(separated_by_a_face(d.blocks[i], d.blocks[j], 1e-9 * size))
+          << "blocks " << i << " and " << j << " overlap";
+}
+
+TEST(MeshApprox, ConvexMeshIsItsHull) {
+  for (const TriangleMesh& mesh : {box_mesh(), sphere_mesh(24, 12)}) {
+    const MeshDecomposition d = approximate_decomposition(mesh, 32);
+    ASSERT_EQ(d.blocks.size(), 1u) << mesh.source;
+    EXPECT_NEAR(d.over_coverage, 0, 1e-12 * d.mesh_volume) << mesh.source;
+    EXPECT_LT(d.hausdorff, 1e-9) << mesh.source;
+    EXPECT_EQ(d.blocks[0].points.size(), mesh.vertices.size()) << mesh.source;
+    EXPECT_TRUE(d.warnings.empty()) << mesh.source;
+  }
+  const MeshDecomposition box = approximate_decomposition(box_mesh(), 32);
+  EXPECT_EQ(box.blocks[0].polygons.size(), 6u);  // the triangles of each side merged
+  EXPECT_DOUBLE_EQ(box.mesh_volume, 3.0);
+}
+
+TEST(MeshApprox, LIsTwoBoxes) {
+  const MeshDecomposition d = approximate_decomposition(testing_support::l_mesh(), 32);
+  ASSERT_EQ(d.blocks.size(), 2u);
+  EXPECT_NEAR(d.mesh_volume, 3.0, 1e-12);
+  EXPECT_GE(d.over_coverage, -1e-12);
+  EXPECT_LE(d.over_coverage, 1e-12);
+  EXPECT_LT(d.hausdorff, 1e-9);
+  expect_valid_and_disjoint(d, 3);
+  report("l_over_coverage", d.over_coverage);
+}
+
+TEST(MeshApprox, HoledCubeKeepsItsHole) {
+  const MeshDecomposition d = approximate_decomposition(testing_support::holed_cube_mesh(), 8);
+  EXPECT_LE(d.blocks.size(), 8u);
+  EXPECT_NEAR(d.mesh_volume, 24.0, 1e-12);
+  EXPECT_NEAR(d.over_coverage, 0, 1e-12);
+  EXPECT_LT(d.hausdorff, 1e-9);
+  expect_valid_and_disjoint(d, 3 * std::sqrt(3.0));
+  for (const PolyhedronDef& block : d.blocks)  // the hole's centre, 0.5 from its walls
+    EXPECT_FALSE(inside_or_on(block, Vec3(1.5, 1.5, 1.5), 0.4));
+  report("holed_cube_blocks", static_cast<Real>(d.blocks.size()));
+}
+
+// Bound on the torus's over-coverage. Measured when this test was written: 5.32 % (Hausdorff
+// 2.6 % of the diagonal). For scale, 16 equal sectors would exceed the mesh by 1.45 %: the
+// greedy sum-of-hulls choice shaves the inner wall off long arcs rather than halving them. The
+// cutter is deterministic, so the bound is the measured figure rounded up to a whole per cent:
+// a change that cuts worse fails here.
+constexpr Real kTorusOverCoverage = 0.06;
+
+TEST(MeshApprox, TorusBlocksAreDisjointAndKeepTheHole) {
+  const TriangleMesh mesh = testing_support::torus_mesh(1, 0.3, 48, 24);
+  const MeshDecomposition d = approximate_decomposition(mesh, 16);
+  EXPECT_LE(d.blocks.size(), 16u);
+  expect_valid_and_disjoint(d, mesh_size(mesh));
+  // The hole (radius 0.7) stays open: no block reaches into a cylinder of radius 0.4 about z.
+  for (Real rho : {0.0, 0.2, 0.4})
+    for (int k = 0; k < 16; ++k)
+      for (Real z : {-0.3, 0.0, 0.3}) {
+        const Real phi = 2 * std::numbers::pi * k / 16;
+        const Vec3 p(rho * std::cos(phi), rho * std::sin(phi), z);
+        for (const PolyhedronDef& block : d.blocks) EXPECT_FALSE(inside_or_on(block, p, 1e-9));
+      }
+  report("torus_blocks", static_cast<Real>(d.blocks.size()));
+  report("torus_over_coverage_percent", 100 * d.over_coverage / d.mesh_volume);
+  report("torus_hausdorff_percent_of_diagonal", 100 * d.hausdorff / mesh_size(mesh));
+  report("torus_seconds", d.seconds);
+  EXPECT_GE(d.over_coverage, -1e-6 * d.mesh_volume);
+  EXPECT_LT(d.over_coverage, kTorusOverCoverage * d.mesh_volume);
+}
+
+TEST(MeshApprox, BlocksCoverTheMesh) {
+  const TriangleMesh mesh = testing_support::potato_mesh(40, 20);
+  const MeshDecomposition d = approximate_decomposition(mesh, 12);
+  const MeshDistance distance(mesh);
+  const Real size = mesh_size(mesh);
+  int inside = 0, uncovered = 0;
+  for (int i = 0; i < 16; ++i)
+    for (int j = 0; j < 16; ++j)
+      for (int k = 0; k < 16; ++k) {
+        const Vec3 p(-1.6 + 3.2 * (i + 0.5) / 16, -1.2 + 2.4 * (j + 0.5) / 16,
+                     -1.0 + 2.0 * (k + 0.5) / 16);
+        if (distance.signed_distance(p) > 0) continue;
+        ++inside;
+        if (std::none_of(d.blocks.begin(), d.blocks.end(), [&](const PolyhedronDef& b) {
+              return inside_or_on(b, p, 1e-4 * size);
+            }))
+          ++uncovered;
+      }
+  EXPECT_GT(inside, 500);
+  EXPECT_EQ(uncovered, 0);
+  expect_valid_and_disjoint(d, size);
+  report("potato_small_over_coverage_percent", 100 * d.over_coverage / d.mesh_volume);
+}
+
+TEST(MeshApprox, MaxBlocksIsRespected) {
+  const TriangleMesh mesh = testing_support::torus_mesh(1, 0.3, 48, 24);
+  for (int max_blocks : {1, 2, 5}) {
+    const MeshDecomposition d = approximate_decomposition(mesh, max_blocks);
+    EXPECT_EQ(static_cast<int>(d.blocks.size()), max_blocks);
+    EXPECT_FALSE(d.warnings.empty());  // the torus is still concave
+  }
+  EXPECT_THROW(approximate_decomposition(mesh, 0), MeshError);
+}
+
+TEST(MeshApprox, SameBlocksEveryRunAndThreadCount) {
+  const TriangleMesh mesh = testing_support::potato_mesh(24, 12);
+  const int threads = max_threads();
+  set_threads(1);
+  const MeshDecomposition one = approximate_decomposition(mesh, 6);
+  set_threads(std::max(threads, 2));
+  const MeshDecomposition two = approximate_decomposition(mesh, 6);
+  const MeshDecomposition again = approximate_decomposition(mesh, 6);
+  set_threads(threads);
+  for (const MeshDecomposition* other : {&two, &again}) {
+    ASSERT_EQ(one.blocks.size(), other->blocks.size());
+    for (size_t b = 0; b < one.blocks.size(); ++b) {
+      EXPECT_EQ(one.blocks[b].polygons, other->blocks[b].polygons);
+      ASSERT_EQ(one.blocks[b].points.size(), other->blocks[b].points.size());
+      for (size_t p = 0; p < one.blocks[b].points.size(); ++p)
+        EXPECT_EQ(one.blocks[b].points[p], other->blocks[b].points[p]);  // to the bit
+    }
+    EXPECT_EQ(one.over_coverage, other->over_coverage);
+    EXPECT_EQ(one.hausdorff, other->hausdorff);
+  }
+}
+
+// The benchmark's stand-ins for scanned meshes are meshes a user could load: closed, outward,
+// free of self-intersections (checked here at a low resolution of the same shapes).
+TEST(MeshApprox, ScanLikeMeshesPassTheChecks) {
+  for (TriangleMesh mesh : {testing_support::bumpy_torus_mesh(60, 16), testing_support::potato_mesh(40, 20)}) {
+    const MeshCheck check = check_mesh(mesh);
+    EXPECT_TRUE(check.closed) << mesh.source;
+    EXPECT_FALSE(check.turned) << mesh.source;
+    EXPECT_GT(check.volume, 0) << mesh.source;
+  }
+  EXPECT_EQ(testing_support::bumpy_torus_mesh().faces.size(), 75000u);
+  EXPECT_EQ(testing_support::potato_mesh().faces.size(), 75000u);
+}
+
+// Three planes through a cube's centre: the corner at the centre is inside the solid and on no
+// edge of the mesh, found only where the caps' common lines meet; volumes add up exactly.
+TEST(MeshApproxCut, CornersInsideTheSolidAndVolumes) {
+  const TriangleMesh cube = testing_support::extruded_mesh(
+      {{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}}, {{0, 1, 2}, {0, 2, 3}}, 2.0, "cube");
+  const MeshPart whole = whole_mesh_part(cube, Vec3(0, 0, 1));
+  EXPECT_DOUBLE_EQ(whole.volume, 8.0);
+  auto halves = cut_part(whole, {Vec3::UnitX(), 0}, true);
+  auto quarters = cut_part(halves[0], {Vec3::UnitY(), 0}, true);
+  auto eighths = cut_part(quarters[0], {Vec3::UnitZ(), 0}, true);
+  for (const MeshPart& eighth : eighths) {
+    EXPECT_DOUBLE_EQ(eighth.volume, 1.0);
+    EXPECT_NE(std::find(eighth.points.begin(), eighth.points.end(), Vec3::Zero()),
+              eighth.points.end());
+    EXPECT_EQ(eighth.points.size(), 8u);  // a unit cube's corners
+  }
+  EXPECT_DOUBLE_EQ(halves[1].volume + quarters[1].volume, 6.0);
+
+  // A torus cut by planes in general position: the sides' volumes add up to the whole.
+  const MeshPart torus = whole_mesh_part(testing_support::torus_mesh(1, 0.3, 48, 24), Vec3::Zero());
+  auto a = cut_part(torus, {Vec3(1, 2, 0.5).normalized(), 0.1}, true);
+  auto b = cut_part(a[0], {Vec3(-0.3, 1, 1).normalized(), -0.05}, true);
+  auto c = cut_part(b[1], {Vec3(0.7, -0.2, 1).normalized(), 0.02}, true);
+  EXPECT_NEAR(a[1].volume + b[0].volume + c[0].volume + c[1].volume, torus.volume,
+              1e-12 * torus.volume);
+}
+
+}  // namespace
+}  // namespace tem
