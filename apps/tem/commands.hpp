@@ -37,6 +37,11 @@ int check_command(const std::string& scene_file);
 // (to stdout, or to FILE).
 int contacts_command(const std::string& scene_file, const std::string& out_file);
 
+// `tem mesh FILE [--blocks exact|approximate] [--max-blocks N] [--scale S] [--out BLOCKS.vtu]
+// [--json]`: reads, checks and cuts a mesh; prints its figures and the blocks'.
+int mesh_command(const std::string& mesh_file, const std::string& cutting, int max_blocks,
+                 Real scale, const std::string& out_file, bool json);
+
 // `tem run SCENE --out DIR [--contacts] [--resume] [--hash]`: simulates and writes bodies.csv,
 // energy.csv, scene.json (and contacts.csv, checkpoint.bin) into DIR; with --resume, continues
 // from DIR/checkpoint.bin; with --hash, prints as its last line `hash: <hex>` of the final

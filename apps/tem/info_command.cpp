@@ -5,12 +5,24 @@
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "commands.hpp"
+#include "mesh/mesh_body.hpp"
 
 namespace tem::cli {
 namespace {
+
+// A body made from one mesh shape, checked against the mesh's own surface integrals: the
+// blocks' volume, centre and inertia beside the mesh's (exact cutting: equal to rounding;
+// approximate: the blocks cover more than the mesh).
+struct MeshCrossCheck {
+  const MeshBody* mesh = nullptr;
+  Real volume_error = 0;   // |V_blocks - V_mesh| / V_mesh
+  Real centre_error = 0;   // |c_blocks - c_mesh| / the body's size
+  Real inertia_error = 0;  // largest entry of |J_blocks - J_mesh| / largest entry of J_mesh
+};
 
 struct BodySummary {
   const Body* body;
@@ -18,7 +30,36 @@ struct BodySummary {
   Mat3 inertia;         // about the centre of mass, world axes: g A g^T
   int nodes = 0;
   int elements = 0;
+  std::optional<MeshCrossCheck> mesh;
 };
+
+// The definition each body came from: the scene's bodies first, then the copies of each fill.
+const BodyDef& body_def(const Model& model, std::size_t i) {
+  const SceneDef& scene = model.scene;
+  if (i < scene.bodies.size()) return scene.bodies[i];
+  i -= scene.bodies.size();
+  for (const FillDef& fill : scene.fill) {
+    if (i < static_cast<std::size_t>(fill.count)) return fill.body;
+    i -= fill.count;
+  }
+  return scene.bodies.back();  // not reached: every body comes from a def
+}
+
+std::optional<MeshCrossCheck> mesh_cross_check(const Model& model, std::size_t i) {
+  const ShapeDef& shape = body_def(model, i).shape;
+  if (shape.type != ShapeType::mesh || !shape.mesh) return std::nullopt;
+  const Body& body = model.bodies[i];
+  const MassProperties& surface = shape.mesh->surface;
+  MeshCrossCheck c;
+  c.mesh = shape.mesh.get();
+  c.volume_error = std::abs(body.volume - surface.volume) / surface.volume;
+  // The body frame's origin is the mesh's; the centre of mass sits at -origin_offset in it.
+  c.centre_error = (-body.origin_offset - surface.center).norm() / body_size(model, body);
+  const Mat3 mesh_inertia = body.density * inertia_from_second_moment(surface.second_moment);
+  c.inertia_error = (body.inertia.inertia - mesh_inertia).cwiseAbs().maxCoeff() /
+                    mesh_inertia.cwiseAbs().maxCoeff();
+  return c;
+}
 
 std::vector<BodySummary> summarise(const Model& model) {
   const State state = initial_state(model);
@@ -28,7 +69,8 @@ std::vector<BodySummary> summarise(const Model& model) {
     const Mat3& g = state.bodies[i].g;
     // g A g^T is symmetric but for round-off; show the symmetric tensor it stands for.
     const Mat3 world = g * body.inertia.inertia * g.transpose();
-    BodySummary s{&body, state.bodies[i].x, 0.5 * (world + world.transpose())};
+    BodySummary s{&body, state.bodies[i].x, 0.5 * (world + world.transpose()), 0, 0, std::nullopt};
+    s.mesh = mesh_cross_check(model, i);
     for (const BlockInstance& instance : body.blocks) {
       const Block& block = model.blocks[instance.block];
       s.nodes += static_cast<int>(block.nodes().size());
@@ -47,11 +89,22 @@ void print_json(const std::vector<BodySummary>& bodies) {
   for (const BodySummary& s : bodies) {
     Json inertia = Json::array();
     for (int r = 0; r < 3; ++r) inertia.push_back(to_json(s.inertia.row(r).transpose()));
-    list.push_back(Json{{"name", s.body->name},
-                        {"volume", s.body->volume},
-                        {"mass", s.body->inertia.mass},
-                        {"center_of_mass", to_json(s.center_of_mass)},
-                        {"inertia", std::move(inertia)}});
+    Json entry{{"name", s.body->name},
+               {"volume", s.body->volume},
+               {"mass", s.body->inertia.mass},
+               {"center_of_mass", to_json(s.center_of_mass)},
+               {"inertia", std::move(inertia)}};
+    if (s.mesh) {
+      const MeshBody& m = *s.mesh->mesh;
+      entry["mesh"] = Json{{"file", m.file_path},
+                           {"cutting", m.cutting == MeshCutting::exact ? "exact" : "approximate"},
+                           {"blocks", m.decomposition.blocks.size()},
+                           {"mesh_volume", m.surface.volume},
+                           {"volume_error", s.mesh->volume_error},
+                           {"centre_error", s.mesh->centre_error},
+                           {"inertia_error", s.mesh->inertia_error}};
+    }
+    list.push_back(std::move(entry));
   }
   // dump() writes the shortest digits that read back as the same double (at most 17).
   std::cout << Json{{"bodies", std::move(list)}}.dump() << "\n";
@@ -79,6 +132,15 @@ void print_text(const std::string& scene_file, const std::vector<BodySummary>& b
     }
     std::printf("  principal moments   %.10g %.10g %.10g\n", principal.x(), principal.y(),
                 principal.z());
+    if (s.mesh) {
+      const MeshBody& m = *s.mesh->mesh;
+      std::printf("  mesh %s: %d faces, cut %s into %zu blocks\n", m.file_path.c_str(),
+                  m.check.faces, m.cutting == MeshCutting::exact ? "exactly" : "approximately",
+                  m.decomposition.blocks.size());
+      std::printf("  blocks against the mesh's surface integrals (relative): volume %.3g, "
+                  "centre %.3g, inertia %.3g\n",
+                  s.mesh->volume_error, s.mesh->centre_error, s.mesh->inertia_error);
+    }
   }
 }
 

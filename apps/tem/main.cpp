@@ -53,6 +53,23 @@ int run(int argc, char** argv) {
   contacts->add_option("scene", scene_file, "Scene file (JSON)")->required();
   contacts->add_option("--out", out_file, "Write the rows to this file instead of stdout");
 
+  std::string mesh_file, cutting = "approximate", blocks_file;
+  int max_blocks = 32;
+  double scale = 1.0;
+  CLI::App* mesh = app.add_subcommand(
+      "mesh", "Read, check and cut a mesh file (OBJ, STL, PLY, OFF) into convex blocks.");
+  mesh->add_option("file", mesh_file, "Mesh file")->required();
+  mesh->add_option("--blocks", cutting,
+                   "exact: blocks whose union is the mesh; approximate: few convex hulls "
+                   "(default)")
+      ->check(CLI::IsMember({"exact", "approximate"}));
+  mesh->add_option("--max-blocks", max_blocks, "Most blocks of an approximate cut (default 32)")
+      ->check(CLI::Range(1, 10000));
+  mesh->add_option("--scale", scale, "Multiply every vertex by this (default 1)")
+      ->check(CLI::PositiveNumber);
+  mesh->add_option("--out", blocks_file, "Write the blocks for ParaView (.vtu)");
+  mesh->add_flag("--json", json, "Print one JSON object");
+
   CLI::App* help = app.add_subcommand("help", "Print this help.");
 
   try {
@@ -70,6 +87,7 @@ int run(int argc, char** argv) {
   if (*info) return info_command(scene_file, json);
   if (*check) return check_command(scene_file);
   if (*contacts) return contacts_command(scene_file, out_file);
+  if (*mesh) return mesh_command(mesh_file, cutting, max_blocks, scale, blocks_file, json);
   if (*run) return run_command(scene_file, out_dir, with_contacts, with_resume, with_hash, threads);
   return kExitUsage;  // unreachable: require_subcommand(1)
 }

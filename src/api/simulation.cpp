@@ -139,8 +139,9 @@ Simulation Simulation::load(const std::string& scene_file) {
 }
 
 Simulation Simulation::from_json(const std::string& scene_json, const std::string& origin) {
-  return Simulation(
-      std::make_unique<Impl>(build_or_throw(read_scene_text(scene_json, origin), origin)));
+  SceneReadResult read = read_scene_text(scene_json, origin);
+  load_scene_meshes(read);
+  return Simulation(std::make_unique<Impl>(build_or_throw(read, origin)));
 }
 
 Simulation Simulation::from_scene(const SceneDef& scene) {

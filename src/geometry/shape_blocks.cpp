@@ -1,6 +1,7 @@
 #include "geometry/shape_blocks.hpp"
 
 #include "geometry/primitives.hpp"
+#include "mesh/mesh_body.hpp"
 
 namespace tem {
 namespace {
@@ -44,6 +45,17 @@ void collect(const ShapeDef& shape, const Mat3& rotation, const Vec3& position,
         throw SceneError(shape.path + ".points", e.what());
       }
       break;
+    case ShapeType::mesh: {
+      if (!shape.mesh)
+        throw SceneError(shape.path + ".file",
+                         "the mesh was not loaded (a scene from read_scene_text needs "
+                         "load_scene_meshes before its model is built)");
+      const auto& blocks = shape.mesh->decomposition.blocks;
+      for (size_t i = 0; i < blocks.size(); ++i)
+        place(blocks[i], "block " + std::to_string(i + 1) + " of " +
+                             std::to_string(blocks.size()) + " cut from " + shape.file);
+      break;
+    }
     case ShapeType::compound:
       for (const ShapeDef& part : shape.parts)
         collect(part, rotation * part.rotation, rotation * part.position + position, out);

@@ -44,6 +44,7 @@ using json::Reader;
 constexpr int kMaxPolygonSides = 1000;
 constexpr double kMaxSteps = 1e9;
 constexpr int kMaxCompoundDepth = 8;
+constexpr int kMaxMeshBlocks = 10000;
 constexpr Real kQuaternionNormTolerance = 1e-6;
 
 // Problems found by the JSON layer become SceneProblems, in the order they are found.
@@ -110,7 +111,8 @@ const std::vector<std::pair<std::string_view, ShapeType>> kShapeTypes = {
     {"ring", ShapeType::ring},
     {"box", ShapeType::box},
     {"convex", ShapeType::convex},
-    {"compound", ShapeType::compound}};
+    {"compound", ShapeType::compound},
+    {"mesh", ShapeType::mesh}};
 
 std::string_view shape_type_name(ShapeType type) {
   for (const auto& [name, value] : kShapeTypes) {
@@ -127,7 +129,8 @@ const KeyList& shape_keys(ShapeType type) {
        {"segments", "sides", "radius", "section_radius", "blocks", "axis", "allow_nonconvex"}},
       {ShapeType::box, {"size"}},
       {ShapeType::convex, {"points"}},
-      {ShapeType::compound, {"blocks"}}};
+      {ShapeType::compound, {"blocks"}},
+      {ShapeType::mesh, {"file", "scale", "blocks", "max_blocks"}}};
   return keys.at(type);
 }
 
@@ -527,6 +530,9 @@ class SceneReader {
       case ShapeType::compound:
         read_compound(j, path, shape, depth);
         break;
+      case ShapeType::mesh:
+        read_mesh(j, path, shape);
+        break;
     }
   }
 
@@ -571,6 +577,28 @@ class SceneReader {
       if (v) points.push_back(*v);
     }
     if (good) shape->points = std::move(points);
+  }
+
+  // The file itself is read, checked and cut once the whole scene has been read
+  // (load_meshes below): a scene with a typo elsewhere does not wait for a decomposition.
+  void read_mesh(const Json& j, const std::string& path, ShapeDef* shape) {
+    if (const Json* f = r_.need(j, path, "file")) {
+      if (auto file = r_.string(*f, child(path, "file"))) {
+        if (file->empty())
+          r_.fail(child(path, "file"), "must name a mesh file (.obj, .stl, .ply or .off)");
+        else
+          shape->file = *file;
+      }
+    }
+    r_.read_number(j, path, "scale", &shape->scale, Bound::positive);
+    if (const Json* b = Reader::get(j, "blocks")) {
+      if (auto cutting = r_.choice<MeshCutting>(
+              *b, child(path, "blocks"),
+              {{"exact", MeshCutting::exact}, {"approximate", MeshCutting::approximate}})) {
+        shape->cutting = *cutting;
+      }
+    }
+    r_.read_int(j, path, "max_blocks", &shape->max_blocks, 1, kMaxMeshBlocks);
   }
 
   void read_compound(const Json& j, const std::string& path, ShapeDef* shape, int depth) {
@@ -680,35 +708,6 @@ SceneReadResult read_scene_text(const std::string& text, const std::string& sour
     problems.push_back({"", std::string("internal error while reading the scene: ") + e.what()});
   }
   return result;
-}
-
-SceneReadResult read_scene_file(const std::string& filename) {
-  std::error_code ec;
-  const std::filesystem::path path(filename);
-  std::string failure;
-  if (!std::filesystem::exists(path, ec)) {
-    failure = "no such file";
-  } else if (std::filesystem::is_directory(path, ec)) {
-    failure = "is a directory, not a scene file";
-  }
-  std::string text;
-  if (failure.empty()) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream buffer;
-    if (in) buffer << in.rdbuf();
-    if (!in || in.bad()) {
-      failure = std::string("cannot be read (") + std::strerror(errno) + ")";
-    } else {
-      text = std::move(buffer).str();
-    }
-  }
-  if (!failure.empty()) {
-    SceneReadResult result;
-    result.scene.source = filename;
-    result.problems.push_back({"", failure});
-    return result;
-  }
-  return read_scene_text(text, filename);
 }
 
 std::string format_problem(const std::string& source_name, const SceneProblem& problem) {

@@ -27,11 +27,19 @@ struct SceneReadResult {
   bool ok() const { return problems.empty(); }
 };
 
-// Reads and validates a scene file. `scene.source` is set to `filename`.
+// Reads and validates a scene file, then loads its meshes (load_scene_meshes). `scene.source` is
+// set to `filename`.
 SceneReadResult read_scene_file(const std::string& filename);
 
-// Same, from text already in memory; `source_name` goes into `scene.source`.
+// Same, from text already in memory, without touching any file: mesh shapes are parsed but not
+// loaded. `source_name` goes into `scene.source`.
 SceneReadResult read_scene_text(const std::string& text, const std::string& source_name);
+
+// For a scene read without problems: reads, checks and cuts the file of every mesh shape (each
+// relative to the directory of `scene.source`, the working directory when it has none) and
+// fills its `file_path` and `mesh`. A mesh's problem is reported at `...shape.file`, its message
+// naming the file, the face or vertex and why.
+void load_scene_meshes(SceneReadResult& result);
 
 // One line for the user: "FILE: PATH: reason", or "FILE: reason" when the path is empty.
 std::string format_problem(const std::string& source_name, const SceneProblem& problem);

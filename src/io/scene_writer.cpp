@@ -74,6 +74,8 @@ const char* shape_type_name(ShapeType type) {
       return "convex";
     case ShapeType::compound:
       return "compound";
+    case ShapeType::mesh:
+      return "mesh";
   }
   return "box";
 }
@@ -130,6 +132,13 @@ Json shape_to_json(const ShapeDef& shape, bool is_part) {
       j["blocks"] = std::move(blocks);
       break;
     }
+    case ShapeType::mesh:
+      // The file as loaded (an absolute path), so that the scene runs again from anywhere.
+      j["file"] = shape.file_path.empty() ? shape.file : shape.file_path;
+      j["scale"] = shape.scale;
+      j["blocks"] = shape.cutting == MeshCutting::exact ? "exact" : "approximate";
+      j["max_blocks"] = shape.max_blocks;
+      break;
   }
   return j;
 }
