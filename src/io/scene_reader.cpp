@@ -330,7 +330,11 @@ class SceneReader {
           r_.fail(child(wpath, "normal"), "must not be zero: it says which side bodies are on");
           normal_ok = false;
         } else {
-          wall.normal /= length;
+          // A normal already of unit length (to rounding) is kept as written: dividing it by
+          // its rounded length again could move it by an ulp, and scene.json must read back to
+          // the very same scene (fuzz-found).
+          if (std::abs(length - 1) > 4 * std::numeric_limits<Real>::epsilon())
+            wall.normal /= length;
         }
       }
       if (point_ok && normal_ok) walls->push_back(wall);
