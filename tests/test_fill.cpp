@@ -112,6 +112,17 @@ TEST(Fill, TooManyForTheRegionSaysHowManyFit) {
   }
 }
 
+// A scene needs bodies from somewhere: with an empty fill list and no `bodies`, it is an error
+// naming `bodies` (the fuzzer found such a scene accepted and written back as one with none).
+TEST(Fill, AnEmptyFillListStillNeedsBodies) {
+  const SceneReadResult read = read_scene_text(
+      R"({"container": {"min": [0, 0, 0], "max": [1, 1, 1]}, "fill": []})", "empty.json");
+  ASSERT_FALSE(read.ok());
+  ASSERT_EQ(read.problems.size(), 1u);
+  EXPECT_NE(read.problems[0].message.find("missing required key 'bodies'"), std::string::npos)
+      << read.problems[0].message;
+}
+
 TEST(Fill, ANameTakenByABodyIsAnError) {
   std::string text = pile_text(1, 3);
   text.replace(text.find("\"name\": \"box\""), 13, "\"name\": \"coin_2\"");

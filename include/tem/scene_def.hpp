@@ -70,6 +70,10 @@ struct ShapeDef {
   std::vector<ShapeDef> parts;
   Vec3 position = Vec3::Zero();  // pose of this shape inside a compound
   Mat3 rotation = Mat3::Identity();
+  // The orientation as the scene file gave it: euler_zxz_deg (3 numbers) or quaternion (4);
+  // empty if it gave none. Written back as given while it still makes `rotation`, so that a
+  // scene written, read and written again gives the same text.
+  std::vector<Real> orientation_given;
 };
 
 struct BodyDef {
@@ -79,6 +83,7 @@ struct BodyDef {
   Real density = 1.0;
   Vec3 position = Vec3::Zero();          // world position of the body frame's origin
   Mat3 rotation = Mat3::Identity();      // body frame to world (from euler_zxz_deg or quaternion)
+  std::vector<Real> orientation_given;   // as ShapeDef::orientation_given
   Vec3 velocity = Vec3::Zero();          // of the centre of mass, world axes
   Vec3 angular_velocity = Vec3::Zero();  // world axes
   bool fixed = false;

@@ -165,9 +165,12 @@ class SceneReader {
     if (const Json* j = Reader::get(root, "walls")) read_walls(*j, "walls", &scene->walls);
     const Json* fill = Reader::get(root, "fill");
     if (fill) read_fills(*fill, "fill", &scene->fill);
-    if (const Json* j = fill ? Reader::get(root, "bodies") : r_.need(root, "", "bodies"))
-      read_bodies(*j, "bodies", &scene->bodies,
-                  /*may_be_empty=*/fill && fill->is_array() && !fill->empty());
+    // Bodies may come from fills alone, but a scene needs some: an empty `fill` list makes
+    // none, so `bodies` is then required (the fuzzer found such a scene accepted, and written
+    // back as one that is not).
+    const bool fills_bodies = fill && fill->is_array() && !fill->empty();
+    if (const Json* j = fills_bodies ? Reader::get(root, "bodies") : r_.need(root, "", "bodies"))
+      read_bodies(*j, "bodies", &scene->bodies, /*may_be_empty=*/fills_bodies);
     if (const Json* j = Reader::get(root, "output")) read_output(*j, "output", &scene->output);
   }
 
@@ -390,7 +393,7 @@ class SceneReader {
     }
     r_.read_number(j, path, "density", &body->density, Bound::positive);
     r_.read_vec3(j, path, "position", &body->position, Bound::any, true);
-    read_orientation(j, path, &body->rotation);
+    read_orientation(j, path, &body->rotation, &body->orientation_given);
     r_.read_vec3(j, path, "velocity", &body->velocity);
     r_.read_vec3(j, path, "angular_velocity", &body->angular_velocity);
     r_.read_bool(j, path, "fixed", &body->fixed);
@@ -513,7 +516,7 @@ class SceneReader {
 
     if (is_part) {
       r_.read_vec3(j, path, "position", &shape->position);
-      read_orientation(j, path, &shape->rotation);
+      read_orientation(j, path, &shape->rotation, &shape->orientation_given);
     }
     switch (*type) {
       case ShapeType::prism:
@@ -635,7 +638,8 @@ class SceneReader {
   }
 
   // euler_zxz_deg or quaternion (or neither: identity) of a body or a compound's part.
-  void read_orientation(const Json& obj, const std::string& path, Mat3* out) {
+  void read_orientation(const Json& obj, const std::string& path, Mat3* out,
+                        std::vector<Real>* given) {
     const Json* euler = Reader::get(obj, "euler_zxz_deg");
     const Json* quaternion = Reader::get(obj, "quaternion");
     if (euler && quaternion) {
@@ -645,6 +649,7 @@ class SceneReader {
     if (euler) {
       if (auto angles = r_.vec3(*euler, child(path, "euler_zxz_deg"))) {
         *out = rotation_from_euler_zxz_deg(*angles);
+        *given = {angles->x(), angles->y(), angles->z()};
       }
     } else if (quaternion) {
       const std::string qpath = child(path, "quaternion");
@@ -659,6 +664,7 @@ class SceneReader {
         return;
       }
       *out = rotation_from_quaternion((*q)[0], (*q)[1], (*q)[2], (*q)[3]);
+      *given = {(*q)[0], (*q)[1], (*q)[2], (*q)[3]};
     }
   }
 

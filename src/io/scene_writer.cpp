@@ -36,7 +36,22 @@ Vec3 euler_zxz_deg_of(const Mat3& g) {
 // whole or decimal degrees; recovering those angles, when the shortest decimal form gives back
 // exactly the same matrix, makes the file readable ([10, 80, 10]) and the round trip exact.
 // Otherwise a quaternion, which comes back equal to rounding (about 1e-16).
-void write_orientation(const Mat3& rotation, Json* j) {
+//
+// An orientation the scene file gave is written as given while it still makes the rotation:
+// a quaternion written from a matrix reads back to a matrix that may differ in the last bit,
+// whose own quaternion may differ again, so only the given numbers make written, read and
+// written again give the same text (the fuzzer found the drift).
+void write_orientation(const Mat3& rotation, const std::vector<Real>& given, Json* j) {
+  if (given.size() == 3 &&
+      rotation_from_euler_zxz_deg(Vec3(given[0], given[1], given[2])) == rotation) {
+    (*j)["euler_zxz_deg"] = Json::array({given[0], given[1], given[2]});
+    return;
+  }
+  if (given.size() == 4 &&
+      rotation_from_quaternion(given[0], given[1], given[2], given[3]) == rotation) {
+    (*j)["quaternion"] = Json::array({given[0], given[1], given[2], given[3]});
+    return;
+  }
   const Vec3 angles = euler_zxz_deg_of(rotation);
   for (int digits = 0; digits <= 12; ++digits) {
     const Real scale = std::pow(10.0, digits);
@@ -98,7 +113,7 @@ Json shape_to_json(const ShapeDef& shape, bool is_part) {
   j["type"] = shape_type_name(shape.type);
   if (is_part) {
     j["position"] = vec3(shape.position);
-    write_orientation(shape.rotation, &j);
+    write_orientation(shape.rotation, shape.orientation_given, &j);
   }
   switch (shape.type) {
     case ShapeType::prism:
@@ -149,7 +164,7 @@ Json body_to_json(const BodyDef& body) {
   j["shape"] = shape_to_json(body.shape, false);
   j["density"] = body.density;
   j["position"] = vec3(body.position);
-  write_orientation(body.rotation, &j);
+  write_orientation(body.rotation, body.orientation_given, &j);
   j["velocity"] = vec3(body.velocity);
   j["angular_velocity"] = vec3(body.angular_velocity);
   j["fixed"] = body.fixed;
