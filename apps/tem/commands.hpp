@@ -48,5 +48,10 @@ int mesh_command(const std::string& mesh_file, const std::string& cutting, int m
 // state's exact bits. `threads`: 0 one per core, < 0 one unless OMP_NUM_THREADS says otherwise.
 int run_command(const std::string& scene_file, const std::string& out_dir, bool contacts,
                 bool resume, bool hash, int threads = -1);
+#ifdef TEM_MPI
+// `tem run` started by mpirun: the same files, the run shared among the ranks.
+int run_distributed_command(const std::string& scene_file, const std::string& out_dir,
+                            bool contacts, bool resume, bool hash, int threads = -1);
+#endif
 
 }  // namespace tem::cli

@@ -17,6 +17,9 @@
 #include "stop_signal.hpp"
 #include "support/parallel.hpp"
 #include "tem/simulation.hpp"
+#ifdef TEM_MPI
+#include "distributed/mpi_session.hpp"
+#endif
 
 namespace tem::cli {
 namespace {
@@ -64,6 +67,11 @@ void warn_about_time_step(const std::string& scene_file, const Model& model) {
 
 int run_command(const std::string& scene_file, const std::string& out_dir, bool contacts,
                 bool resume, bool hash, int threads) {
+#ifdef TEM_MPI
+  // Started by mpirun: the run is shared among its ranks (run_distributed.cpp).
+  if (distributed::launched_by_mpi())
+    return run_distributed_command(scene_file, out_dir, contacts, resume, hash, threads);
+#endif
   // One thread unless asked: several `tem run` side by side (a parameter sweep, ctest -j) each
   // spinning up a thread per core would fight over the cores.
   if (threads < 0 && !std::getenv("OMP_NUM_THREADS")) threads = 1;

@@ -28,17 +28,27 @@ Aabb block_bounds(const Block& block, const BlockPose& pose) {
   return box;
 }
 
-void BroadPhase::build_proxies(const Model& model) {
+void BroadPhase::build_proxies(const Model& model, const BodySubset* subset) {
   proxies_.clear();
-  for (int b = 0; b < static_cast<int>(model.bodies.size()); ++b)
+  for (int b = 0; b < static_cast<int>(model.bodies.size()); ++b) {
+    if (subset && !subset->resident[b]) continue;
     for (int i = 0; i < static_cast<int>(model.bodies[b].blocks.size()); ++i)
       proxies_.push_back({b, i});
+  }
 }
 
-void BroadPhase::update(const Model& model, const State& state, const std::vector<Real>& reach) {
-  size_t block_count = 0;
-  for (const Body& body : model.bodies) block_count += body.blocks.size();
-  if (proxies_.size() != block_count) build_proxies(model);
+void BroadPhase::update(const Model& model, const State& state, const std::vector<Real>& reach,
+                        const BodySubset* subset) {
+  if (subset && subset->empty()) subset = nullptr;
+  if (subset) {
+    build_proxies(model, subset);  // the resident bodies change from step to step
+    built_for_subset_ = true;
+  } else {
+    size_t block_count = 0;
+    for (const Body& body : model.bodies) block_count += body.blocks.size();
+    if (built_for_subset_ || proxies_.size() != block_count) build_proxies(model, nullptr);
+    built_for_subset_ = false;
+  }
 
   const size_t n = proxies_.size();
   poses_.resize(n);
@@ -55,6 +65,17 @@ void BroadPhase::update(const Model& model, const State& state, const std::vecto
   }
   find_block_pairs(model);
   find_wall_pairs(model, reach);
+  if (subset) keep_owned_pairs(*subset);
+}
+
+// Each process tests the pairs that touch a body it owns; a pair of two ghosts is another
+// process's (it owns at least one of the two bodies).
+void BroadPhase::keep_owned_pairs(const BodySubset& subset) {
+  std::erase_if(block_pairs_, [&](const BlockPair& p) {
+    return !subset.owned[proxies_[p.a].body] && !subset.owned[proxies_[p.b].body];
+  });
+  std::erase_if(wall_pairs_,
+                [&](const WallPair& p) { return !subset.owned[proxies_[p.proxy].body]; });
 }
 
 void BroadPhase::find_block_pairs(const Model& model) {

@@ -50,7 +50,12 @@ class BroadPhase {
   // body, contact_margins.hpp) every block's bounds grow by its body's reach, and a block is
   // paired with a wall when its bounds come within twice its reach of the plane: the pairs
   // that may make contact before overlap.
-  void update(const Model& model, const State& state, const std::vector<Real>& reach = {});
+  //
+  // With a `subset` (domain decomposition) only its resident bodies take part, and only pairs
+  // with at least one owned body are reported. Proxies keep the bodies' order, so the pairs
+  // are those of one process with every body, filtered, in the same order.
+  void update(const Model& model, const State& state, const std::vector<Real>& reach = {},
+              const BodySubset* subset = nullptr);
 
   const std::vector<BlockProxy>& proxies() const { return proxies_; }
   const std::vector<BlockPose>& poses() const { return poses_; }
@@ -62,7 +67,8 @@ class BroadPhase {
   int large_blocks() const { return static_cast<int>(large_.size()); }
 
  private:
-  void build_proxies(const Model& model);
+  void build_proxies(const Model& model, const BodySubset* subset);
+  void keep_owned_pairs(const BodySubset& subset);
   void find_block_pairs(const Model& model);
   void find_wall_pairs(const Model& model, const std::vector<Real>& reach);
 
@@ -79,6 +85,7 @@ class BroadPhase {
   std::vector<Entry> entries_;
   std::vector<int> large_;
   std::vector<char> is_large_;  // per proxy, kept between steps
+  bool built_for_subset_ = false;
   std::vector<Real> extents_;
   Real cell_ = 0;
 };

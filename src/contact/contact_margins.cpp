@@ -19,7 +19,7 @@ bool contact_before_overlap(const SceneDef& scene) {
 }
 
 void contact_reaches(const Model& model, const State& state, std::vector<Real>& reach,
-                     const ExternalLoads* loads) {
+                     const ExternalLoads* loads, const BodySubset* subset) {
   const SceneDef& scene = model.scene;
   if (!contact_before_overlap(scene)) {
     reach.clear();
@@ -29,7 +29,9 @@ void contact_reaches(const Model& model, const State& state, std::vector<Real>& 
   reach.resize(n);
   const Real dt = scene.time_step;
   const Real fall = scene.gravity.norm() * dt * dt;
+  const bool all = !subset || subset->empty();
   for (size_t b = 0; b < n; ++b) {
+    if (!all && !subset->resident[b]) continue;  // far from this process: never looked at
     if (scene.contact.margin) {
       reach[b] = *scene.contact.margin / 2;
       continue;

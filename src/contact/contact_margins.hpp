@@ -28,7 +28,7 @@ bool contact_before_overlap(const SceneDef& scene);
 
 // Per body, the reach at `state` (empty when the scene does not make contact before overlap).
 void contact_reaches(const Model& model, const State& state, std::vector<Real>& reach,
-                     const ExternalLoads* loads = nullptr);
+                     const ExternalLoads* loads = nullptr, const BodySubset* subset = nullptr);
 
 // How many moving bodies moved farther from `before` to `after` (any node of theirs) than their
 // reach covered.

@@ -29,6 +29,15 @@ struct State {
 // torque about the centre of mass, held through every step until changed. Not part of the
 // State: a step does not change them, whoever applies them does. `active` false (all zero): the
 // step takes the same path, and gives the same bits, as with no loads at all.
+// The bodies one process of a domain decomposition holds (src/distributed/): `owned` ones it
+// moves, `resident` ones (owned, or ghosts: copies of bodies owned elsewhere that come within
+// contact reach) it tests for contact. One flag per body of the whole scene. Empty: one
+// process holds and moves every body.
+struct BodySubset {
+  std::vector<char> resident, owned;
+  bool empty() const { return owned.empty(); }
+};
+
 struct ExternalLoads {
   std::vector<Vec3> force, torque;  // one per body when active
   bool active = false;

@@ -48,8 +48,8 @@ void find_contact_forces(const Model& model, const State& state, Workspace& w) {
   // 1. Broad phase: block pairs and block-wall pairs whose world bounds overlap, grown by each
   // body's reach where contact is made before overlap.
   const ExternalLoads* loads = w.loads.empty() ? nullptr : &w.loads;
-  contact_reaches(model, state, w.contact.reach, loads);
-  w.contact.broad_phase.update(model, state, w.contact.reach);
+  contact_reaches(model, state, w.contact.reach, loads, &w.subset);
+  w.contact.broad_phase.update(model, state, w.contact.reach, &w.subset);
   w.times.broad_phase += seconds_since(clock);
 
   // 2-3. Narrow phase and patches: node in element, edge through face, grouping.
@@ -71,8 +71,9 @@ void advance(const Model& model, State& state, Workspace& w) {
   Real energy_before = correct ? system_energies(model, state).total() : 0;
   const bool loaded = !w.loads.empty();
   if (!w.contact.reach.empty() || loaded) w.before = state.bodies;
+  const bool all = w.subset.empty();
   parallel_for(static_cast<long long>(model.bodies.size()), 256, [&](long long i) {
-    if (model.bodies[i].fixed) return;
+    if (model.bodies[i].fixed || (!all && !w.subset.owned[i])) return;
     const Vec3 force = loaded ? Vec3(w.forces.force[i] + w.loads.force[i]) : w.forces.force[i];
     const Vec3 torque = loaded ? Vec3(w.forces.torque[i] + w.loads.torque[i]) : w.forces.torque[i];
     integrate(scene.integrator, model.bodies[i].inertia, scene.gravity, force, torque,

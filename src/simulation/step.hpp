@@ -38,6 +38,10 @@ struct Workspace {
   // Forces and torques from outside (the public API's external_force / external_torque), held
   // until changed; empty: none. Sized to the bodies when set.
   ExternalLoads loads;
+  // Under domain decomposition (src/distributed/), the bodies this process holds: contact is
+  // sought only among resident bodies, for pairs with an owned one, and only owned bodies are
+  // moved. Empty: every body (one process).
+  BodySubset subset;
 };
 
 // Stages 1-4 at `state`: the patches and the contact forces of the step that starts there.

@@ -1,0 +1,94 @@
+#include "distributed/distributed_run.hpp"
+
+#include <mpi.h>
+
+#include "io/checkpoint.hpp"
+
+namespace tem::distributed {
+namespace {
+
+// Rank 0's checkpoint of the current state and the memory the next step starts from.
+void write_distributed_checkpoint(const Domain& domain, const Model& model, const State& state,
+                                  const Workspace& w, const RunPlan& plan) {
+  State whole;
+  ContactForces memory;
+  domain.gather_state(model, state, whole);
+  domain.gather_memory(w.forces, memory);
+  if (domain.rank() != 0) return;
+  const OutputSizes sizes = plan.output ? plan.output->sizes() : OutputSizes{0, 0, -1};
+  write_checkpoint(plan.checkpoint_file, make_checkpoint(model.scene, whole, memory, sizes));
+}
+
+// Rank 0's rows for the current state, with the contacts of the step that starts from it.
+void write_rows(const Domain& domain, const Model& model, const State& state, const Workspace& w,
+                const RunPlan& plan) {
+  State whole;
+  Workspace gathered;
+  domain.gather_state(model, state, whole);
+  domain.gather_contacts(w, gathered.patches, gathered.forces.patch_forces);
+  if (domain.rank() == 0 && plan.output) plan.output->write(model, whole, gathered);
+}
+
+bool any_rank(MPI_Comm comm, bool mine) {
+  int flag = mine ? 1 : 0, any = 0;
+  MPI_Allreduce(&flag, &any, 1, MPI_INT, MPI_LOR, comm);
+  return any != 0;
+}
+
+}  // namespace
+
+std::string unsupported_reason(const SceneDef& scene) {
+  if (scene.contact.model != ContactModel::penalty)
+    return "over MPI ranks TEM runs the penalty contact model so far; contact.model '" +
+           std::string(scene.contact.model == ContactModel::semm ? "semm" : "semm-paper") +
+           "' needs the distributed contact solver, which is not built yet: run this scene "
+           "without mpirun (threads: --threads N)";
+  return "";
+}
+
+RunResult run_steps(Domain& domain, const Model& model, State& state, Workspace& w,
+                    const RunPlan& plan, const std::function<bool()>& stop_requested,
+                    const std::function<void(long long, Real)>& progress) {
+  RunResult result;
+  const long long first_step = state.step;
+  long long written_step = -1;
+  while (state.step < plan.total_steps) {
+    const long long k = state.step;
+    if (any_rank(MPI_COMM_WORLD, stop_requested())) {
+      write_distributed_checkpoint(domain, model, state, w, plan);
+      result.end = RunEnd::stopped;
+      domain.gather_state(model, state, result.whole);
+      return result;
+    }
+    // As one process (Simulation::Impl::advance_one): a checkpoint where a step begins, before
+    // its rows.
+    if (plan.checkpoint_every > 0 && k % plan.checkpoint_every == 0 && k != first_step)
+      write_distributed_checkpoint(domain, model, state, w, plan);
+    domain.balance_if_needed(model, state, w);
+    domain.exchange(model, state, w);
+    find_contact_forces(model, state, w);
+    if (k % plan.every == 0 && written_step != k) {
+      write_rows(domain, model, state, w, plan);
+      written_step = k;
+    }
+    advance(model, state, w);
+    const int bad = domain.first_non_finite_body(state);
+    if (bad >= 0) {
+      result.end = RunEnd::not_finite;
+      result.bad_body = bad;
+      return result;
+    }
+    if (domain.rank() == 0 && progress) progress(state.step, state.time);
+  }
+  // The checkpoint of the last state, then its rows (as `tem run` on one process).
+  write_distributed_checkpoint(domain, model, state, w, plan);
+  if (written_step != state.step) {
+    domain.exchange(model, state, w);
+    find_contact_forces(model, state, w);
+    write_rows(domain, model, state, w, plan);
+  }
+  domain.gather_state(model, state, result.whole);
+  return result;
+}
+
+}  // namespace tem::distributed

@@ -1,0 +1,105 @@
+#!/usr/bin/env python3
+"""`mpirun -np N tem run` against one process (issue 14's checks; ctest runs them when TEM is
+built with TEM_MPI). Usage: check_mpi_runs.py MODE TEM MPIEXEC SCENE WORKDIR
+
+  identical  the penalty pour at 1, 2 and 3 ranks writes bodies.csv, energy.csv and
+             contacts.csv byte for byte as one process does: every contact found, in the same
+             order, with the same forces, while bodies migrate between ranks and are ghosts on
+             others (the run's summary must show both, or the check proves nothing)
+  resume     a run stopped at 2 ranks (a checkpoint at half time) resumes at 1 and at 3 ranks,
+             and one process's checkpoint at 2, to the files of a run never stopped
+  refuse     a scene whose contact model the distributed engine does not carry yet is refused
+             on every rank with a reason and exit code 1, not run wrongly
+"""
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+MODE, TEM, MPIEXEC, SCENE, WORK = sys.argv[1:6]
+ENV = dict(os.environ,
+           OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+           # Three ranks on a two-core machine: ranks waiting for a message give up the core.
+           OMPI_MCA_mpi_yield_when_idle="1", OMPI_MCA_rmaps_base_oversubscribe="1",
+           OMP_NUM_THREADS="1")
+FILES = ["bodies.csv", "energy.csv", "contacts.csv"]
+
+
+def run(args, ranks=None, expect=0):
+    command = ([MPIEXEC, "--oversubscribe", "-np", str(ranks)] if ranks else []) + [TEM, "run"] + args
+    done = subprocess.run(command, env=ENV, capture_output=True, text=True, timeout=600)
+    if done.returncode != expect:
+        sys.exit(f"{' '.join(command)} exited {done.returncode}, not {expect}:\n{done.stderr}")
+    return done.stderr
+
+
+def fresh(name):
+    path = os.path.join(WORK, name)
+    shutil.rmtree(path, ignore_errors=True)
+    return path
+
+
+def same_files(reference, other, what):
+    for f in FILES:
+        a, b = os.path.join(reference, f), os.path.join(other, f)
+        if not os.path.exists(a):
+            continue
+        with open(a, "rb") as x, open(b, "rb") as y:
+            left, right = x.read(), y.read()
+        if left != right:
+            lines = zip(left.decode().splitlines(), right.decode().splitlines())
+            first = next((i for i, (p, q) in enumerate(lines) if p != q), None)
+            sys.exit(f"{what}: {f} differs from one process's (first at line {first})")
+    print(f"{what}: {', '.join(f for f in FILES if os.path.exists(os.path.join(reference, f)))}"
+          " byte for byte as one process")
+
+
+def scene_with_duration(duration, name):
+    with open(SCENE) as f:
+        text = f.read()
+    changed = re.sub(r'"duration":\s*[0-9.eE+-]+', f'"duration": {duration}', text, count=1)
+    path = os.path.join(WORK, name)
+    with open(path, "w") as f:
+        f.write(changed)
+    return path
+
+
+os.makedirs(WORK, exist_ok=True)
+if MODE == "identical":
+    serial = fresh("serial")
+    run([SCENE, "--out", serial, "--contacts"])
+    for ranks in (1, 2, 3):
+        out = fresh(f"ranks_{ranks}")
+        summary = run([SCENE, "--out", out, "--contacts"], ranks)
+        same_files(serial, out, f"{ranks} rank(s)")
+        if ranks > 1:
+            m = re.search(r"([0-9.]+) ghosts and ([0-9.]+) migrations per step", summary)
+            if not m or float(m.group(1)) <= 0 or float(m.group(2)) <= 0:
+                sys.exit(f"at {ranks} ranks no body was a ghost or crossed a boundary:\n{summary}")
+            print(f"  {m.group(1)} ghosts and {m.group(2)} migrations per step")
+elif MODE == "resume":
+    with open(SCENE) as f:
+        duration = float(re.search(r'"duration":\s*([0-9.eE+-]+)', f.read()).group(1))
+    half = scene_with_duration(duration / 2, "half.json")
+    whole = scene_with_duration(duration, "whole.json")
+    serial = fresh("uninterrupted")
+    run([whole, "--out", serial, "--contacts"])
+    for stopped_at, resumed_at in ((2, 1), (2, 3), (None, 2)):
+        out = fresh(f"stopped_{stopped_at}_resumed_{resumed_at}")
+        run([half, "--out", out, "--contacts"], stopped_at)
+        summary = run([whole, "--out", out, "--contacts", "--resume"], resumed_at)
+        if "resuming at step" not in summary:
+            sys.exit(f"no resume reported:\n{summary}")
+        same_files(serial, out, f"checkpoint of {stopped_at or 'one process'} "
+                                f"resumed at {resumed_at or 'one process'}")
+elif MODE == "refuse":
+    out = fresh("refused")
+    message = run([SCENE, "--out", out], 2, expect=1)
+    if "penalty" not in message or "mpirun" not in message:
+        sys.exit(f"the refusal does not say why and what to do:\n{message}")
+    if message.count("needs the distributed contact solver") != 1:
+        sys.exit(f"the reason should be printed once (by rank 0):\n{message}")
+    print("refused with:", message.strip())
+else:
+    sys.exit(f"unknown mode {MODE}")
