@@ -3,6 +3,7 @@
 #include "forces/body_response.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -10,14 +11,31 @@
 namespace tem {
 namespace {
 
-// The spring of the last step for this patch: same pair, nearest within 1% of A's size.
+// The order of patches (detect_contacts.cpp) and so of the springs made from them: by body A,
+// body pairs before wall pairs, then by body B or wall.
+struct PairKey {
+  int a, is_wall, other;
+  auto operator<=>(const PairKey&) const = default;
+};
+template <class T>
+PairKey pair_key(const T& c) {
+  return {c.body_a, c.wall >= 0 ? 1 : 0, c.wall >= 0 ? c.wall : c.body_b};
+}
+
+// The spring of the last step for this patch: same pair, nearest within 1% of A's size. The
+// last step's springs are in patch order, so the pair's are found by bisection, not by a scan
+// of all of them (which made a pile's force stage quadratic in its contacts).
 Vec3 remembered_stretch(const Model& model, const std::vector<PenaltySpring>& old,
                         const ContactPatch& p) {
   const Real reach = 0.01 * body_size(model, p.body_a);
   const PenaltySpring* best = nullptr;
   Real best_distance = reach;
-  for (const PenaltySpring& s : old) {
-    if (s.body_a != p.body_a || s.body_b != p.body_b || s.wall != p.wall) continue;
+  const PairKey key = pair_key(p);
+  const auto first = std::lower_bound(
+      old.begin(), old.end(), key,
+      [](const PenaltySpring& s, const PairKey& k) { return pair_key(s) < k; });
+  for (auto it = first; it != old.end() && pair_key(*it) == key; ++it) {
+    const PenaltySpring& s = *it;
     const Real d = (s.point - p.point).norm();
     if (d < best_distance) {
       best_distance = d;
@@ -41,6 +59,10 @@ void penalty_forces(const Model& model, const State& state,
                     std::vector<Real>& normal_magnitude, std::vector<Real>& tangential_magnitude) {
   const ContactDef& c = model.scene.contact;
   const Real dt = model.scene.time_step;
+  assert(std::is_sorted(springs.begin(), springs.end(),
+                        [](const PenaltySpring& x, const PenaltySpring& y) {
+                          return pair_key(x) < pair_key(y);
+                        }));
   const bool hertz = c.law == PenaltyLaw::hertz;
   std::vector<PenaltySpring> next;
   next.reserve(patches.size());
