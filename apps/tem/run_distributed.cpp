@@ -150,6 +150,14 @@ int run_distributed_command(const std::string& scene_file, const std::string& ou
                    static_cast<double>(steps) / std::max(wall, 1e-9),
                    1e6 * wall / static_cast<double>(std::max<long long>(steps, 1)), e.kinetic,
                    e.potential, e.total());
+      // The solver's figures are the ranks' shared ones (every rank sweeps as often).
+      const StageTimes& t = impl.workspace.times;
+      if (scene.contact.model != ContactModel::penalty)
+        std::fprintf(stderr,
+                     "  contact solver: %.2f sweeps per step on average, %d at most, %lld steps "
+                     "unconverged, %lld scaled to add no energy, %lld overlap corrections\n",
+                     static_cast<double>(t.sweeps) / static_cast<double>(std::max<long long>(t.steps, 1)),
+                     t.max_sweeps, t.unconverged_steps, t.scaled_steps, t.corrected_steps);
     }
     print_distributed_summary(domain, steps, wall);
     if (root) {

@@ -72,6 +72,7 @@ void BroadPhase::update(const Model& model, const State& state, const std::vecto
 // process's (it owns at least one of the two bodies).
 void BroadPhase::keep_owned_pairs(const BodySubset& subset) {
   std::erase_if(block_pairs_, [&](const BlockPair& p) {
+    if (subset.solved_once) return !subset.owned[proxies_[p.a].body];  // body A: proxy a's
     return !subset.owned[proxies_[p.a].body] && !subset.owned[proxies_[p.b].body];
   });
   std::erase_if(wall_pairs_,

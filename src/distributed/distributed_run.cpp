@@ -38,11 +38,13 @@ bool any_rank(MPI_Comm comm, bool mine) {
 }  // namespace
 
 std::string unsupported_reason(const SceneDef& scene) {
-  if (scene.contact.model != ContactModel::penalty)
-    return "over MPI ranks TEM runs the penalty contact model so far; contact.model '" +
-           std::string(scene.contact.model == ContactModel::semm ? "semm" : "semm-paper") +
-           "' needs the distributed contact solver, which is not built yet: run this scene "
-           "without mpirun (threads: --threads N)";
+  if (scene.contact.model == ContactModel::semm_paper)
+    return "over MPI ranks TEM runs the penalty and the default SEMM contact models; "
+           "contact.model 'semm-paper' (the paper's direct solve) is not distributed: run this "
+           "scene without mpirun (threads: --threads N)";
+  if (scene.contact.model == ContactModel::semm && scene.contact.solver != ContactSolver::rows)
+    return "over MPI ranks SEMM runs with contact.solver 'rows' (the default); 'blocks' is not "
+           "distributed: run this scene without mpirun, or with the rows solver";
   return "";
 }
 
@@ -67,6 +69,7 @@ RunResult run_steps(Domain& domain, const Model& model, State& state, Workspace&
     domain.balance_if_needed(model, state, w);
     domain.exchange(model, state, w);
     find_contact_forces(model, state, w);
+    domain.return_ghost_forces(w);
     if (k % plan.every == 0 && written_step != k) {
       write_rows(domain, model, state, w, plan);
       written_step = k;
@@ -85,6 +88,7 @@ RunResult run_steps(Domain& domain, const Model& model, State& state, Workspace&
   if (written_step != state.step) {
     domain.exchange(model, state, w);
     find_contact_forces(model, state, w);
+    domain.return_ghost_forces(w);
     write_rows(domain, model, state, w, plan);
   }
   domain.gather_state(model, state, result.whole);

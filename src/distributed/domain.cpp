@@ -6,6 +6,7 @@
 
 #include "collision/broad_phase.hpp"
 #include "contact/contact_margins.hpp"
+#include "distributed/contact_memory.hpp"
 #include "distributed/messages.hpp"
 
 namespace tem::distributed {
@@ -64,13 +65,17 @@ std::vector<std::pair<size_t, size_t>> memory_runs(const std::vector<PenaltySpri
   return runs;
 }
 
-// A body as it travels: its index, its state and the memory of its contacts as body A.
+// A body as it travels: its index, its state and the memory of its contacts as body A (the
+// penalty springs; SEMM's patches when it changes owner).
 void pack_body(Packer& out, int body, const BodyState& state,
-               const std::vector<PenaltySpring>& springs, std::pair<size_t, size_t> run) {
+               const std::vector<PenaltySpring>& springs, std::pair<size_t, size_t> run,
+               const std::vector<const MemoryPatch*>& patches = {}) {
   out.put(body);
   out.put(state);
   out.put(static_cast<double>(run.second - run.first));
   for (size_t k = run.first; k < run.second; ++k) out.put(springs[k]);
+  out.put(static_cast<double>(patches.size()));
+  for (const MemoryPatch* p : patches) pack(out, *p);
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -112,12 +117,26 @@ void Domain::start(const Model& model, const State& state, Workspace& w) {
       owned_ids_.push_back(b);
     }
   w.subset.resident = w.subset.owned;
+  owner_.assign(static_cast<size_t>(n), -1);
+  for (int b : owned_ids_) owner_[b] = rank_;
+  solved_once_ = model.scene.contact.model != ContactModel::penalty;
+  w.subset.solved_once = solved_once_;
+  if (solved_once_) {
+    shared_ = std::make_unique<SharedSolve>(comm_, w.subset, owner_);
+    w.sync = shared_.get();
+  }
   keep_owned_memory(w);
 }
 
 void Domain::keep_owned_memory(Workspace& w) const {
   std::erase_if(w.forces.springs,
                 [&](const PenaltySpring& s) { return !w.subset.owned[s.body_a]; });
+  if (!solved_once_) return;
+  std::vector<MemoryPatch> patches = memory_patches(w.forces);
+  std::erase_if(patches, [&](const MemoryPatch& p) {
+    return p.friction.body_a < 0 || !w.subset.owned[p.friction.body_a];
+  });
+  set_memory_patches(std::move(patches), w.forces);
 }
 
 void Domain::balance_if_needed(const Model& model, State& state, Workspace& w) {
@@ -147,16 +166,10 @@ void Domain::balance_if_needed(const Model& model, State& state, Workspace& w) {
 void Domain::exchange(const Model& model, State& state, Workspace& w) {
   const auto start = std::chrono::steady_clock::now();
   keep_owned_memory(w);  // the copies of contacts this rank evaluated for another go
-  auto sort_memory = [&] {
-    std::stable_sort(w.forces.springs.begin(), w.forces.springs.end(),
-                     [](const PenaltySpring& p, const PenaltySpring& q) {
-                       return key_of(p) < key_of(q);
-                     });
-  };
   migrate(model, state, w);
-  sort_memory();  // borders sends each body's memory as one run
+  sort_springs(w.forces.springs);  // borders sends each body's springs as one run
   borders(model, state, w);
-  sort_memory();
+  sort_springs(w.forces.springs);
   stats_.seconds += seconds_since(start);
 }
 
@@ -165,6 +178,15 @@ void Domain::migrate(const Model& model, State& state, Workspace& w) {
   std::vector<char> leaving(model.bodies.size(), 0);
   std::vector<int> kept;
   const auto runs = memory_runs(w.forces.springs, model.bodies.size());
+  // SEMM's memory, patch by patch, found per body A.
+  std::vector<MemoryPatch> patches;
+  std::vector<std::vector<const MemoryPatch*>> patches_of;
+  if (solved_once_) {
+    patches = memory_patches(w.forces);
+    patches_of.resize(model.bodies.size());
+    for (const MemoryPatch& p : patches) patches_of[p.friction.body_a].push_back(&p);
+  }
+  static const std::vector<const MemoryPatch*> none;
   for (int b : owned_ids_) {
     const int to = partition_.owner_of(state.bodies[b].x);
     if (to == rank_) {
@@ -172,37 +194,51 @@ void Domain::migrate(const Model& model, State& state, Workspace& w) {
       continue;
     }
     Packer out(send[static_cast<size_t>(to)]);
-    pack_body(out, b, state.bodies[b], w.forces.springs, runs[b]);
+    pack_body(out, b, state.bodies[b], w.forces.springs, runs[b],
+              solved_once_ ? patches_of[b] : none);
     leaving[b] = 1;
     w.subset.owned[b] = 0;
+    owner_[b] = to;
   }
   std::erase_if(w.forces.springs, [&](const PenaltySpring& s) { return leaving[s.body_a]; });
-  for (int b : deliver(send, state, w)) {
+  if (solved_once_) {
+    std::erase_if(patches, [&](const MemoryPatch& p) { return leaving[p.friction.body_a]; });
+    arrived_.clear();
+  }
+  for (const auto& [b, from] : deliver(send, state, w)) {
     w.subset.owned[b] = 1;
+    owner_[b] = rank_;
     kept.push_back(b);
     ++stats_.migrated;
+  }
+  if (solved_once_) {
+    for (MemoryPatch& p : arrived_) patches.push_back(std::move(p));
+    arrived_.clear();
+    set_memory_patches(std::move(patches), w.forces);
   }
   std::sort(kept.begin(), kept.end());
   owned_ids_ = std::move(kept);
 }
 
-std::vector<int> Domain::deliver(const std::vector<std::vector<double>>& send, State& state,
-                                 Workspace& w) {
+std::vector<std::pair<int, int>> Domain::deliver(const std::vector<std::vector<double>>& send,
+                                                 State& state, Workspace& w) {
   for (const std::vector<double>& message : send)
     if (!message.empty()) {
       stats_.bytes_sent += static_cast<long long>(message.size() * sizeof(double));
       ++stats_.messages_sent;
     }
   const std::vector<std::vector<double>> received = exchange_with_all(comm_, send);
-  std::vector<int> bodies;
-  for (const std::vector<double>& message : received) {
-    Unpacker in(message);
+  std::vector<std::pair<int, int>> bodies;
+  for (int r = 0; r < size_; ++r) {
+    Unpacker in(received[static_cast<size_t>(r)]);
     while (!in.done()) {
       const int b = in.integer();
       state.bodies[b] = in.body_state();
-      const int count = in.integer();
-      for (int k = 0; k < count; ++k) w.forces.springs.push_back(in.spring());
-      bodies.push_back(b);
+      const int springs = in.integer();
+      for (int k = 0; k < springs; ++k) w.forces.springs.push_back(in.spring());
+      const int patches = in.integer();
+      for (int k = 0; k < patches; ++k) arrived_.push_back(unpack_memory_patch(in));
+      bodies.push_back({b, r});
     }
   }
   return bodies;
@@ -241,10 +277,39 @@ void Domain::borders(const Model& model, State& state, Workspace& w) {
       pack_body(out, b, state.bodies[b], w.forces.springs, runs[b]);
     }
   }
-  for (int b : deliver(send, state, w)) {
+  ghost_ids_.clear();
+  for (const auto& [b, from] : deliver(send, state, w)) {
     w.subset.resident[b] = 1;
+    owner_[b] = from;
+    ghost_ids_.push_back(b);
     ++stats_.ghosts;
   }
+}
+
+void Domain::return_ghost_forces(Workspace& w) {
+  if (!solved_once_) return;
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<std::vector<double>> send(static_cast<size_t>(size_));
+  ContactForces& f = w.forces;
+  for (int b : ghost_ids_) {
+    if (f.force[b].isZero(0) && f.torque[b].isZero(0)) continue;
+    Packer out(send[static_cast<size_t>(owner_[b])]);
+    out.put(b);
+    out.put(f.force[b]);
+    out.put(f.torque[b]);
+  }
+  for (const std::vector<double>& message : send)
+    stats_.bytes_sent += static_cast<long long>(message.size() * sizeof(double));
+  const std::vector<std::vector<double>> received = exchange_with_all(comm_, send);
+  for (const std::vector<double>& message : received) {  // in rank order
+    Unpacker in(message);
+    while (!in.done()) {
+      const int b = in.integer();
+      f.force[b] += in.vec3();
+      f.torque[b] += in.vec3();
+    }
+  }
+  stats_.seconds += seconds_since(start);
 }
 
 void Domain::gather_state(const Model& model, const State& state, State& whole) const {
@@ -319,19 +384,26 @@ void Domain::gather_memory(const ContactForces& forces, ContactForces& whole) co
   Packer out(mine);
   // Called where a step begins, before exchange(): the springs of the last step, this rank's
   // (body A owned) and the copies it evaluated for other ranks.
+  std::vector<const PenaltySpring*> springs;
   for (const PenaltySpring& s : forces.springs)
-    if (std::binary_search(owned_ids_.begin(), owned_ids_.end(), s.body_a)) out.put(s);
+    if (std::binary_search(owned_ids_.begin(), owned_ids_.end(), s.body_a)) springs.push_back(&s);
+  out.put(static_cast<double>(springs.size()));
+  for (const PenaltySpring* s : springs) out.put(*s);
+  // SEMM's memory is all this rank's own (each contact on one rank).
+  if (solved_once_)
+    for (const MemoryPatch& p : memory_patches(forces)) pack(out, p);
   const std::vector<std::vector<double>> all = gather_to_root(comm_, mine);
   whole = ContactForces{};
   if (rank_ != 0) return;
+  std::vector<MemoryPatch> patches;
   for (const std::vector<double>& part : all) {
     Unpacker in(part);
-    while (!in.done()) whole.springs.push_back(in.spring());
+    const int count = in.integer();
+    for (int k = 0; k < count; ++k) whole.springs.push_back(in.spring());
+    while (!in.done()) patches.push_back(unpack_memory_patch(in));
   }
-  std::stable_sort(whole.springs.begin(), whole.springs.end(),
-                   [](const PenaltySpring& p, const PenaltySpring& q) {
-                     return key_of(p) < key_of(q);
-                   });
+  sort_springs(whole.springs);
+  set_memory_patches(std::move(patches), whole);
 }
 
 int Domain::first_non_finite_body(const State& state) const {

@@ -11,17 +11,23 @@
 //                reach boxes that body's state and contact memory: after it, every pair of
 //                bodies that may touch is resident where either body is owned.
 // A contact belongs to the rank that owns its body A (the lower index): its memory is kept
-// and its row is written there. A contact across a boundary is also evaluated by the rank of
-// body B, from the same states and memory, so each rank sums the forces on its own bodies from
-// every contact that touches them, in the order one process would (LAMMPS's "newton off"): no
-// force travels back, and penalty runs are bit-identical at any rank count.
+// and its row is written there. Penalty: a contact across a boundary is also evaluated by the
+// rank of body B, from the same states and memory, so each rank sums the forces on its own
+// bodies from every contact that touches them, in the order one process would (LAMMPS's
+// "newton off"): no force travels back, and penalty runs are bit-identical at any rank count.
+// SEMM: a contact is on its owner's rank only, all ranks solve together (shared_solve.hpp),
+// and the forces on ghosts travel back to their owners (return_ghost_forces).
 #pragma once
 
 #include <vector>
 
 #include <mpi.h>
 
+#include <memory>
+
+#include "distributed/contact_memory.hpp"
 #include "distributed/rcb_partition.hpp"
+#include "distributed/shared_solve.hpp"
 #include "forces/contact_forces.hpp"
 #include "simulation/step.hpp"
 
@@ -49,6 +55,10 @@ class Domain {
   // Steps 1 and 2 above, at the start of a step.
   void exchange(const Model& model, State& state, Workspace& workspace);
 
+  // SEMM: after the forces, the forces and torques this rank's contacts put on ghosts go to
+  // their owners, who add them in rank order (penalty needs none: see above).
+  void return_ghost_forces(Workspace& workspace);
+
   // New cuts when the owned cost is out of balance by more than `tolerance` (max / mean);
   // checked every `every` steps. Costs: a body's blocks plus twice its contacts.
   void balance_if_needed(const Model& model, State& state, Workspace& workspace);
@@ -69,6 +79,7 @@ class Domain {
   int size() const { return size_; }
   long long owned_count(const Workspace& w) const;
   const ExchangeStats& stats() const { return stats_; }
+  const SharedSolve* shared_solve() const { return shared_.get(); }
 
   int balance_every = 50;
   double balance_tolerance = 1.2;
@@ -78,14 +89,19 @@ class Domain {
   void migrate(const Model& model, State& state, Workspace& workspace);
   void borders(const Model& model, State& state, Workspace& workspace);
   // Sends send[r] to rank r; takes in the bodies the others sent (state and memory) and
-  // returns their indices.
-  std::vector<int> deliver(const std::vector<std::vector<double>>& send, State& state,
-                           Workspace& workspace);
+  // returns each with the rank that sent it.
+  std::vector<std::pair<int, int>> deliver(const std::vector<std::vector<double>>& send,
+                                           State& state, Workspace& workspace);
 
   MPI_Comm comm_;
   int rank_ = 0, size_ = 1;
   RcbPartition partition_;
   std::vector<int> owned_ids_;  // this rank's bodies, ascending
+  std::vector<int> ghost_ids_;  // the ghosts of this step
+  std::vector<int> owner_;      // the rank of every resident body
+  bool solved_once_ = false;    // SEMM: each contact on one rank, solved by all together
+  std::unique_ptr<SharedSolve> shared_;
+  std::vector<MemoryPatch> arrived_;  // SEMM memory that came with migrating bodies
   long long steps_since_balance_ = 0;
   ExchangeStats stats_;
   // Scratch.

@@ -42,6 +42,66 @@ PenaltySpring Unpacker::spring() {
   return s;
 }
 
+void Packer::put(const ContactPoint& c) {
+  put(c.patch);
+  put(c.body_a);
+  put(c.body_b);
+  put(c.wall);
+  put(c.point);
+  put(c.normal);
+  put(c.tangent1);
+  put(c.tangent2);
+  put(c.depth);
+}
+
+ContactPoint Unpacker::point() {
+  ContactPoint c;
+  c.patch = integer();
+  c.body_a = integer();
+  c.body_b = integer();
+  c.wall = integer();
+  c.point = vec3();
+  c.normal = vec3();
+  c.tangent1 = vec3();
+  c.tangent2 = vec3();
+  c.depth = number();
+  return c;
+}
+
+void Packer::put(const PatchFriction& p) {
+  put(p.first);
+  put(p.last);
+  put(p.body_a);
+  put(p.body_b);
+  put(p.wall);
+  put(p.centre);
+  put(p.normal);
+  put(p.tangent1);
+  put(p.tangent2);
+  put(p.start_slip);
+  put(p.t1);
+  put(p.t2);
+  put(p.twist);
+}
+
+PatchFriction Unpacker::friction() {
+  PatchFriction p;
+  p.first = integer();
+  p.last = integer();
+  p.body_a = integer();
+  p.body_b = integer();
+  p.wall = integer();
+  p.centre = vec3();
+  p.normal = vec3();
+  p.tangent1 = vec3();
+  p.tangent2 = vec3();
+  p.start_slip = vec3();
+  p.t1 = number();
+  p.t2 = number();
+  p.twist = number();
+  return p;
+}
+
 namespace {
 std::vector<int> displacements(const std::vector<int>& counts) {
   std::vector<int> at(counts.size(), 0);

@@ -25,6 +25,8 @@ class Packer {
   }
   void put(const BodyState& s);
   void put(const PenaltySpring& s);
+  void put(const ContactPoint& c);
+  void put(const PatchFriction& p);
 
  private:
   std::vector<double>& out_;
@@ -49,6 +51,8 @@ class Unpacker {
   }
   BodyState body_state();
   PenaltySpring spring();
+  ContactPoint point();
+  PatchFriction friction();
 
  private:
   const std::vector<double>& in_;

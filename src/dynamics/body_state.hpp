@@ -33,8 +33,13 @@ struct State {
 // moves, `resident` ones (owned, or ghosts: copies of bodies owned elsewhere that come within
 // contact reach) it tests for contact. One flag per body of the whole scene. Empty: one
 // process holds and moves every body.
+//
+// `solved_once`: every contact is evaluated by one rank only, the owner of its body A (SEMM,
+// whose contacts are solved together); otherwise also by the owner of body B (penalty, whose
+// forces are local: no force need travel back).
 struct BodySubset {
   std::vector<char> resident, owned;
+  bool solved_once = false;
   bool empty() const { return owned.empty(); }
 };
 

@@ -1,3 +1,4 @@
+#include "forces/solver_sync.hpp"
 #include "forces/contact_forces.hpp"
 
 #include <algorithm>
@@ -61,7 +62,7 @@ void match_radii(const Model& model, std::vector<Real>& radius) {
 
 void compute_contact_forces(const Model& model, const State& state,
                             const std::vector<ContactPatch>& patches, ContactForces& f,
-                            const ExternalLoads* loads) {
+                            const ExternalLoads* loads, SolverSync* sync) {
   const SceneDef& scene = model.scene;
   const Real dt = scene.time_step;
   const size_t n_bodies = model.bodies.size();
@@ -89,7 +90,7 @@ void compute_contact_forces(const Model& model, const State& state,
       f.patch_forces[k] = {f.normal_magnitude[k], f.tangential_magnitude[k]};
     return;
   }
-  if (patches.empty()) return;
+  if (patches.empty() && !sync) return;
 
   const bool paper = scene.contact.model == ContactModel::semm_paper;
   const bool one_point = scene.contact.points == PatchPoints::one;
@@ -108,6 +109,7 @@ void compute_contact_forces(const Model& model, const State& state,
     settings.max_sweeps = scene.contact.max_sweeps;
     settings.colour_sweeps = scene.contact.colour_sweeps;
     settings.time_step = dt;
+    settings.sync = sync;
     // Slower than what gravity adds in two steps is resting contact, not an impact.
     settings.restitution_threshold = 2 * scene.gravity.norm() * dt;
     if (f.match_radius.size() != n_bodies) match_radii(model, f.match_radius);

@@ -57,8 +57,10 @@ struct ContactForces {
 // Fills out.force, out.torque (one per body) and out.patch_forces (one per patch).
 // `loads`: the external forces and torques acting through the step (none when null), which the
 // contact impulses must answer as they answer gravity.
+// With `sync` (a run shared among MPI ranks, solver_sync.hpp) the patches are this rank's and
+// the solve is the ranks' together: every rank calls it, with patches or without.
 void compute_contact_forces(const Model& model, const State& state,
                             const std::vector<ContactPatch>& patches, ContactForces& out,
-                            const ExternalLoads* loads = nullptr);
+                            const ExternalLoads* loads = nullptr, SolverSync* sync = nullptr);
 
 }  // namespace tem

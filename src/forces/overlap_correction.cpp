@@ -1,3 +1,4 @@
+#include "forces/solver_sync.hpp"
 #include "forces/overlap_correction.hpp"
 
 #include <algorithm>
@@ -12,9 +13,9 @@ constexpr Real kSlop = 1e-4;  // of the body's size: overlap left alone
 }  // namespace
 
 CorrectionReport correct_overlap(const Model& model, ContactForces& f, Real energy_before,
-                                 State& state) {
+                                 State& state, SolverSync* sync) {
   CorrectionReport report;
-  if (f.points.empty()) return report;
+  if (f.points.empty() && !sync) return report;
   const Real dt = model.scene.time_step;
   std::vector<Real>& targets = f.correction.targets;
   targets.assign(f.points.size(), 0);
@@ -31,12 +32,13 @@ CorrectionReport correct_overlap(const Model& model, ContactForces& f, Real ener
       any = true;
     }
   }
+  if (sync) any = sync->sum(any ? 1 : 0) > 0;
   if (!any) return report;
   // Nothing dissipated (bodies at rest: the contacts only cancelled what gravity added), nothing
   // to fund a lift with: the move would be scaled to nothing. Skipping the solve then is what
   // makes resting piles cheap; it forgoes only moves that lift nothing (purely sideways), which
   // wait for the next step that dissipates.
-  const Energies after = system_energies(model, state);
+  const Energies after = system_energies(model, state, sync);
   const Real dissipated = energy_before - after.total();
   if (!(dissipated > 1e-12 * (std::abs(after.kinetic) + std::abs(after.potential)))) return report;
 
@@ -48,6 +50,7 @@ CorrectionReport correct_overlap(const Model& model, ContactForces& f, Real ener
   stopping.tolerance = model.scene.contact.tolerance;
   stopping.max_sweeps = model.scene.contact.max_sweeps;
   stopping.colour_sweeps = model.scene.contact.colour_sweeps;
+  stopping.sync = sync;
   // The scalar-row solver where the step used it (its memory is free again by now).
   RowSolverMemory* rows = model.scene.contact.solver == ContactSolver::rows ? &f.rows : nullptr;
   f.correction.patches = f.friction;
@@ -57,11 +60,13 @@ CorrectionReport correct_overlap(const Model& model, ContactForces& f, Real ener
   // The potential energy the move costs, against what the step dissipated.
   Real lift = 0;
   for (size_t b = 0; b < model.bodies.size(); ++b)
-    lift -= model.bodies[b].inertia.mass * model.scene.gravity.dot(dt * moved[b].velocity);
+    if (!sync || sync->owns(static_cast<int>(b)))
+      lift -= model.bodies[b].inertia.mass * model.scene.gravity.dot(dt * moved[b].velocity);
+  if (sync) lift = sync->sum(lift);
   report.scale = lift > 0 ? std::clamp<Real>(dissipated / lift, 0, 1) : 1;
   if (report.scale == 0) return report;
   for (size_t b = 0; b < model.bodies.size(); ++b) {
-    if (model.bodies[b].fixed) continue;
+    if (model.bodies[b].fixed || (sync && !sync->owns(static_cast<int>(b)))) continue;
     BodyState& s = state.bodies[b];
     s.x += report.scale * dt * moved[b].velocity;
     s.g = cayley(report.scale * dt * moved[b].angular_velocity) * s.g;

@@ -22,7 +22,9 @@ struct CorrectionReport {
 
 // After integration: `energy_before` is the system's energy at the start of the step, `forces`
 // the step's contact forces (points, responses, centres, patches).
+// With `sync` (MPI ranks, solver_sync.hpp) every rank calls it: the energies and the move's
+// cost are the ranks' sums, the solve is shared, and each rank moves the bodies it owns.
 CorrectionReport correct_overlap(const Model& model, ContactForces& forces,
-                                 Real energy_before, State& state);
+                                 Real energy_before, State& state, SolverSync* sync = nullptr);
 
 }  // namespace tem

@@ -526,6 +526,8 @@ SolverReport solve_separation(const std::vector<ContactPoint>& points,
   settings.tolerance = stopping.tolerance;
   settings.max_sweeps = stopping.max_sweeps;
   settings.colour_sweeps = stopping.colour_sweeps;
+  settings.sync = stopping.sync;
+  settings.energy_check = false;
   impulses.assign(points.size(), PointImpulse{});
   for (PatchFriction& p : patches) p.t1 = p.t2 = p.twist = 0;
   if (rows) {

@@ -51,6 +51,8 @@ struct PatchFriction {
   Real t1 = 0, t2 = 0, twist = 0;
 };
 
+class SolverSync;  // solver_sync.hpp
+
 struct SolverSettings {
   Real friction = 0;
   Real restitution = 0;
@@ -59,6 +61,12 @@ struct SolverSettings {
   Real tolerance = 1e-9;  // relative change of the impulses that ends the sweeps
   bool colour_sweeps = false;  // sweep by colours (threads share them) instead of patch order
   Real time_step = 0;  // for the gaps of contact before overlap (a gap s may close by s)
+  // Shared among MPI ranks (solver_sync.hpp): the scalar-row solver's bodies are already split
+  // and it synchronises after every sweep. Null: one process.
+  SolverSync* sync = nullptr;
+  // Whether the result is impulses whose energy is checked (false: the overlap correction's
+  // move).
+  bool energy_check = true;
 };
 
 struct SolverReport {

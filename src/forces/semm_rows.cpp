@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "forces/solver_sync.hpp"
+
 namespace tem {
 namespace {
 
@@ -167,6 +169,12 @@ SolverReport sweeps(Memory& m, const std::vector<int>& colours, const SolverSett
     });
     SweepSize total;
     for (const SweepSize& s : m.sizes) total.add(s.change, s.largest);
+    // Over ranks: the copies of shared bodies agree again, and every rank stops at the same
+    // sweep.
+    if (settings.sync) {
+      settings.sync->average(m.velocity, m.angular_velocity);
+      total = settings.sync->largest(total);
+    }
     report.change = total.largest > 0 ? total.change / total.largest : 0;
     if (report.change <= settings.tolerance) return report;
   }
@@ -225,7 +233,7 @@ inline Vec3 row_slip(const Memory::FrictionRow& f, const std::vector<Vec3>& v,
 // (normal impulses stay >= 0, friction inside its cone), only the push is a hair weaker.
 Real energy_scale(const Memory& m, const std::vector<BodyResponse>& bodies,
                   const std::vector<Real>& start, std::vector<Vec3>& free_v,
-                  std::vector<Vec3>& free_w) {
+                  std::vector<Vec3>& free_w, SolverSync* sync) {
   const size_t n = bodies.size();
   free_v.resize(n + 1);
   free_w.resize(n + 1);
@@ -249,6 +257,10 @@ Real energy_scale(const Memory& m, const std::vector<BodyResponse>& bodies,
     added += j.dot(f.start_slip + after) / 2;
     curvature += j.dot(after - row_slip(f, free_v, free_w)) / 2;
   }
+  if (sync) {  // each row is on one rank: the step's sums are the ranks' sums
+    added = sync->sum(added);
+    curvature = sync->sum(curvature);
+  }
   if (!(added > 0)) return 1;
   const Real linear = added - curvature;
   return linear < 0 && curvature > 0 ? std::clamp<Real>(-linear / curvature, 0, 1) : 0;
@@ -258,12 +270,15 @@ Real energy_scale(const Memory& m, const std::vector<BodyResponse>& bodies,
 
 SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
                              const std::vector<Real>& start, const std::vector<Real>& targets,
-                             const std::vector<BodyResponse>& bodies,
+                             const std::vector<BodyResponse>& given,
                              const std::vector<Vec3>& centres, const SolverSettings& settings,
                              std::vector<PatchFriction>& patches,
                              std::vector<PointImpulse>& impulses, RowSolverMemory& m) {
   impulses.resize(points.size());
-  if (points.empty()) return SolverReport{};
+  SolverSync* const sync = settings.sync;
+  if (points.empty() && !sync) return SolverReport{};  // over ranks, the others may have some
+  // Over ranks, bodies shared with other ranks' rows are split among them (solver_sync.hpp).
+  const std::vector<BodyResponse>& bodies = sync ? sync->split(points, given) : given;
   const size_t n = bodies.size();
   const int still = static_cast<int>(n);
   m.velocity.resize(n + 1);
@@ -302,18 +317,38 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
     m.patch_of_friction[j] = colouring.order[j];
   });
 
-  const bool warm = apply_all(m, still);
+  bool warm = apply_all(m, still);
+  if (sync) {
+    sync->average(m.velocity, m.angular_velocity);
+    warm = sync->sum(warm ? 1 : 0) > 0;
+  }
   SolverReport report = sweeps(m, colouring.start, settings, still);
   // Stopped short with more energy than no impulse at all would leave (a warm start that no
   // longer fits): start again from zero, from where every sweep can only lower the energy.
-  if (!report.converged && warm && !start.empty()) {
+  // The energy checks are for impulses, not for the overlap correction's move; over ranks a
+  // rank may have no rows (an empty `start`) while the others check.
+  const bool impulses_checked = settings.energy_check && (sync || !start.empty());
+  if (!report.converged && warm && impulses_checked) {
     std::vector<BodyResponse>& now = m.now;
     now = bodies;
     for (size_t b = 0; b < n; ++b) {
       now[b].velocity = m.velocity[b];
       now[b].angular_velocity = m.angular_velocity[b];
     }
-    if (pseudo_energy_change(now, bodies) > 0) {
+    // Over ranks: each body once, with its own (not split) mass, summed over the ranks.
+    Real change = 0;
+    if (sync) {
+      const std::vector<BodyResponse>& whole = sync->unsplit();
+      for (size_t b = 0; b < n; ++b) {
+        if (!sync->owns(static_cast<int>(b)) || whole[b].inverse_mass == 0) continue;
+        const std::vector<BodyResponse> one_now{now[b]}, one_start{whole[b]};
+        change += pseudo_energy_change(one_now, one_start);
+      }
+      change = sync->sum(change);
+    } else {
+      change = pseudo_energy_change(now, bodies);
+    }
+    if (change > 0) {
       reset_velocities(m, bodies);
       for (Memory::NormalRow& r : m.rows) r.impulse = 0;
       for (Memory::FrictionRow& f : m.friction) f.t1 = f.t2 = f.twist = 0;
@@ -322,8 +357,8 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
       report.sweeps += first_sweeps;
     }
   }
-  if (!start.empty())
-    report.scale = energy_scale(m, bodies, start, m.free_velocity, m.free_angular_velocity);
+  if (impulses_checked)
+    report.scale = energy_scale(m, bodies, start, m.free_velocity, m.free_angular_velocity, sync);
   // Results back in the caller's order.
   for (size_t r = 0; r < m.rows.size(); ++r)
     impulses[m.point_of_row[r]].normal = report.scale * m.rows[r].impulse;

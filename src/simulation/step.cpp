@@ -57,7 +57,7 @@ void find_contact_forces(const Model& model, const State& state, Workspace& w) {
   w.times.narrow_phase += seconds_since(clock);
 
   // 4. Forces: the contact impulses of the scene's force model, as forces held over the step.
-  compute_contact_forces(model, state, w.patches, w.forces, loads);
+  compute_contact_forces(model, state, w.patches, w.forces, loads, w.sync);
   w.times.forces += seconds_since(clock);
 }
 
@@ -66,9 +66,10 @@ void advance(const Model& model, State& state, Workspace& w) {
   Clock::time_point clock = Clock::now();
 
   // 5. Integration of every moving body under gravity and its contact force and torque.
-  const bool correct = scene.contact.model == ContactModel::semm &&
-                       scene.integrator == IntegratorKind::default_ && !w.patches.empty();
-  Real energy_before = correct ? system_energies(model, state).total() : 0;
+  bool correct = scene.contact.model == ContactModel::semm &&
+                 scene.integrator == IntegratorKind::default_ && !w.patches.empty();
+  if (w.sync) correct = w.sync->sum(correct ? 1 : 0) > 0;  // all ranks, or none
+  Real energy_before = correct ? system_energies(model, state, w.sync).total() : 0;
   const bool loaded = !w.loads.empty();
   if (!w.contact.reach.empty() || loaded) w.before = state.bodies;
   const bool all = w.subset.empty();
@@ -83,7 +84,7 @@ void advance(const Model& model, State& state, Workspace& w) {
   // The external loads' work over the step is no dissipation of the contacts': a drag's loss
   // must not fund a correction, nor a push's gain hide one.
   if (correct && loaded) energy_before += external_work(model, w.loads, w.before, state.bodies);
-  if (correct && correct_overlap(model, w.forces, energy_before, state).applied)
+  if (correct && correct_overlap(model, w.forces, energy_before, state, w.sync).applied)
     ++w.times.corrected_steps;
   // Bodies that moved farther than their reach could meet a contact already overlapping.
   if (!w.contact.reach.empty())
@@ -107,11 +108,20 @@ void advance(const Model& model, State& state, Workspace& w) {
 }
 
 Energies system_energies(const Model& model, const State& state) {
+  return system_energies(model, state, nullptr);
+}
+
+Energies system_energies(const Model& model, const State& state, SolverSync* sync) {
   Energies e;
   for (size_t i = 0; i < model.bodies.size(); ++i) {
+    if (sync && !sync->owns(static_cast<int>(i))) continue;
     const RigidInertia& inertia = model.bodies[i].inertia;
     e.kinetic += kinetic_energy(inertia, state.bodies[i]);
     e.potential += potential_energy(inertia, model.scene.gravity, state.bodies[i]);
+  }
+  if (sync) {
+    e.kinetic = sync->sum(e.kinetic);
+    e.potential = sync->sum(e.potential);
   }
   return e;
 }

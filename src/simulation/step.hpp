@@ -7,6 +7,7 @@
 
 #include "contact/detect_contacts.hpp"
 #include "forces/contact_forces.hpp"
+#include "forces/solver_sync.hpp"
 #include "world/model.hpp"
 
 namespace tem {
@@ -42,6 +43,8 @@ struct Workspace {
   // sought only among resident bodies, for pairs with an owned one, and only owned bodies are
   // moved. Empty: every body (one process).
   BodySubset subset;
+  // With a subset whose contacts are solved together by all ranks (SEMM): how they agree.
+  SolverSync* sync = nullptr;
 };
 
 // Stages 1-4 at `state`: the patches and the contact forces of the step that starts there.
@@ -61,6 +64,8 @@ struct Energies {
   Real total() const { return kinetic + potential; }
 };
 Energies system_energies(const Model& model, const State& state);
+// Over MPI ranks (sync not null): each rank's owned bodies, summed over the ranks.
+Energies system_energies(const Model& model, const State& state, SolverSync* sync);
 
 // The first body whose state is not finite, or -1.
 int first_non_finite_body(const State& state);
