@@ -37,8 +37,20 @@ void print_distributed_summary(const distributed::Domain& domain, long long step
   MPI_Reduce(mine, least, 3, MPI_DOUBLE, MPI_MIN, 0, MPI_COMM_WORLD);
   long long counts[3] = {s.migrated, s.ghosts, s.messages_sent}, totals[3];
   MPI_Reduce(counts, totals, 3, MPI_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
+  long long solve[2] = {0, 0}, solve_total[2] = {0, 0};
+  if (const distributed::SharedSolve* shared = domain.shared_solve()) {
+    solve[0] = shared->averages;
+    solve[1] = shared->bytes_sent;
+  }
+  MPI_Reduce(solve, solve_total, 2, MPI_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
   if (domain.rank() != 0) return;
   const double per = static_cast<double>(std::max<long long>(steps, 1));
+  if (solve_total[0] > 0)
+    std::fprintf(stderr,
+                 "  shared solve: %.1f averagings of shared bodies per step, %.0f bytes sent per "
+                 "step per rank in them\n",
+                 static_cast<double>(solve_total[0]) / domain.size() / per,
+                 static_cast<double>(solve_total[1]) / domain.size() / per);
   std::fprintf(stderr,
                "  %d ranks: %.0f-%.0f bodies each at the end; %.1f ghosts and %.2f migrations "
                "per step in all; exchanges %.2f-%.2f us per step (%.1f%% of the step at most), "

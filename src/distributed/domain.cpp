@@ -132,6 +132,10 @@ void Domain::keep_owned_memory(Workspace& w) const {
   std::erase_if(w.forces.springs,
                 [&](const PenaltySpring& s) { return !w.subset.owned[s.body_a]; });
   if (!solved_once_) return;
+  // SEMM's memory is all this rank's but after a start from a checkpoint every rank read.
+  const bool all_own = std::all_of(w.forces.points.begin(), w.forces.points.end(),
+                                   [&](const ContactPoint& c) { return w.subset.owned[c.body_a] != 0; });
+  if (all_own) return;
   std::vector<MemoryPatch> patches = memory_patches(w.forces);
   std::erase_if(patches, [&](const MemoryPatch& p) {
     return p.friction.body_a < 0 || !w.subset.owned[p.friction.body_a];
