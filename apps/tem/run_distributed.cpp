@@ -118,6 +118,9 @@ int run_distributed_command(const std::string& scene_file, const std::string& ou
           : 0;
   plan.checkpoint_file = out_dir + "/checkpoint.bin";
   plan.output = root ? impl.output.get() : nullptr;
+  plan.directory = out_dir;
+  if (root && plan.output && plan.output->paraview())
+    plan.output->paraview()->use_pieces(mpi.size());
 
   StopOnSignal stop;
   const long long first_step = sim.step_count();
@@ -138,8 +141,8 @@ int run_distributed_command(const std::string& scene_file, const std::string& ou
     const long long steps = impl.state.step - first_step;
     if (result.end == distributed::RunEnd::stopped) {
       if (root)
-        std::cerr << "tem run: stopped by signal at step " << impl.state.step << " (t = "
-                  << impl.state.time << " s); every file in " << out_dir
+        std::cerr << "tem run: stopped by signal at step " << impl.state.step
+                  << " (t = " << impl.state.time << " s); every file in " << out_dir
                   << " is complete up to there.\n  continue with: mpirun -np N tem run "
                   << scene_file << " --out " << out_dir << (contacts ? " --contacts" : "")
                   << " --resume (any N, or without mpirun)\n";
@@ -148,9 +151,9 @@ int run_distributed_command(const std::string& scene_file, const std::string& ou
     if (result.end == distributed::RunEnd::not_finite) {
       if (root)
         std::cerr << scene_file << ": the state of body '"
-                  << impl.model.bodies[result.bad_body].name
-                  << "' stopped being finite at step " << impl.state.step
-                  << "; the results up to the last output row are in " << out_dir << "\n";
+                  << impl.model.bodies[result.bad_body].name << "' stopped being finite at step "
+                  << impl.state.step << "; the results up to the last output row are in " << out_dir
+                  << "\n";
       return kExitFailed;
     }
     if (root) {
@@ -165,18 +168,18 @@ int run_distributed_command(const std::string& scene_file, const std::string& ou
       // The solver's figures are the ranks' shared ones (every rank sweeps as often).
       const StageTimes& t = impl.workspace.times;
       if (scene.contact.model != ContactModel::penalty)
-        std::fprintf(stderr,
-                     "  contact solver: %.2f sweeps per step on average, %d at most, %lld steps "
-                     "unconverged, %lld scaled to add no energy, %lld overlap corrections\n",
-                     static_cast<double>(t.sweeps) / static_cast<double>(std::max<long long>(t.steps, 1)),
-                     t.max_sweeps, t.unconverged_steps, t.scaled_steps, t.corrected_steps);
+        std::fprintf(
+            stderr,
+            "  contact solver: %.2f sweeps per step on average, %d at most, %lld steps "
+            "unconverged, %lld scaled to add no energy, %lld overlap corrections\n",
+            static_cast<double>(t.sweeps) / static_cast<double>(std::max<long long>(t.steps, 1)),
+            t.max_sweeps, t.unconverged_steps, t.scaled_steps, t.corrected_steps);
     }
     print_distributed_summary(domain, steps, wall);
     if (root) {
       std::cerr << "tem run: results in " << out_dir << "/ (bodies.csv, energy.csv"
                 << (contacts ? ", contacts.csv" : "") << ", scene.json, checkpoint.bin"
-                << (scene.output.paraview ? ", tem.pvd and paraview/ for ParaView" : "")
-                << ")\n";
+                << (scene.output.paraview ? ", tem.pvd and paraview/ for ParaView" : "") << ")\n";
       if (hash) std::cout << "hash: " << hash_hex(state_hash(result.whole)) << std::endl;
     }
   } catch (const std::exception& e) {

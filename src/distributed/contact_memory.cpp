@@ -75,10 +75,9 @@ MemoryPatch unpack_memory_patch(Unpacker& in) {
 }
 
 void sort_springs(std::vector<PenaltySpring>& springs) {
-  std::stable_sort(springs.begin(), springs.end(),
-                   [](const PenaltySpring& p, const PenaltySpring& q) {
-                     return pair_key(p) < pair_key(q);
-                   });
+  std::stable_sort(
+      springs.begin(), springs.end(),
+      [](const PenaltySpring& p, const PenaltySpring& q) { return pair_key(p) < pair_key(q); });
 }
 
 }  // namespace tem::distributed

@@ -22,6 +22,19 @@ void write_distributed_checkpoint(const Domain& domain, const Model& model, cons
 // Rank 0's rows for the current state, with the contacts of the step that starts from it.
 void write_rows(const Domain& domain, const Model& model, const State& state, const Workspace& w,
                 const RunPlan& plan) {
+  if (model.scene.output.paraview) {
+    // This rank's piece first: rank 0 lists the pieces once the gathers below have completed,
+    // that is once every rank has written its own.
+    std::vector<ContactPatch> patches;
+    std::vector<PatchForce> forces;
+    for (size_t k = 0; k < w.patches.size(); ++k)
+      if (w.subset.owned[w.patches[k].body_a]) {
+        patches.push_back(w.patches[k]);
+        forces.push_back(w.forces.patch_forces[k]);
+      }
+    ParaviewOutput::write_piece(plan.directory, model, state, w.subset.owned, patches, forces,
+                                domain.rank());
+  }
   State whole;
   Workspace gathered;
   domain.gather_state(model, state, whole);

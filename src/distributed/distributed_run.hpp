@@ -1,7 +1,8 @@
 // `tem run` over MPI ranks (mpirun -np N tem run SCENE --out DIR): the loop of one rank. Every
-// rank loaded the scene (and, resuming, the checkpoint); rank 0 alone writes the files, which
-// are those of a one-process run: rows gathered in body order, contacts in one process's
-// order, one checkpoint that resumes at any rank count, with or without MPI.
+// rank loaded the scene (and, resuming, the checkpoint); rank 0 writes the files, which are
+// those of a one-process run: rows gathered in body order, contacts in one process's order,
+// one checkpoint that resumes at any rank count, with or without MPI. ParaView frames are
+// written in pieces, each rank its own bodies and contacts, under one tem.pvd of .pvtu files.
 #pragma once
 
 #include <functional>
@@ -17,7 +18,8 @@ struct RunPlan {
   long long every = 1;             // steps between output rows
   long long checkpoint_every = 0;  // steps between checkpoints, 0: none
   std::string checkpoint_file;
-  RunOutput* output = nullptr;     // rank 0's files; null on the other ranks
+  RunOutput* output = nullptr;  // rank 0's files; null on the other ranks
+  std::string directory;        // where every rank writes its ParaView pieces
 };
 
 enum class RunEnd { finished, stopped, not_finite };

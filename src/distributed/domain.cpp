@@ -133,8 +133,9 @@ void Domain::keep_owned_memory(Workspace& w) const {
                 [&](const PenaltySpring& s) { return !w.subset.owned[s.body_a]; });
   if (!solved_once_) return;
   // SEMM's memory is all this rank's but after a start from a checkpoint every rank read.
-  const bool all_own = std::all_of(w.forces.points.begin(), w.forces.points.end(),
-                                   [&](const ContactPoint& c) { return w.subset.owned[c.body_a] != 0; });
+  const bool all_own =
+      std::all_of(w.forces.points.begin(), w.forces.points.end(),
+                  [&](const ContactPoint& c) { return w.subset.owned[c.body_a] != 0; });
   if (all_own) return;
   std::vector<MemoryPatch> patches = memory_patches(w.forces);
   std::erase_if(patches, [&](const MemoryPatch& p) {
@@ -374,9 +375,8 @@ void Domain::gather_contacts(const Workspace& w, std::vector<ContactPatch>& patc
       gathered.push_back({std::move(p), f});
     }
   }
-  std::stable_sort(gathered.begin(), gathered.end(), [](const auto& x, const auto& y) {
-    return key_of(x.first) < key_of(y.first);
-  });
+  std::stable_sort(gathered.begin(), gathered.end(),
+                   [](const auto& x, const auto& y) { return key_of(x.first) < key_of(y.first); });
   for (auto& [p, f] : gathered) {
     patches.push_back(std::move(p));
     forces.push_back(f);

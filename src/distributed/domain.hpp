@@ -19,11 +19,10 @@
 // and the forces on ghosts travel back to their owners (return_ghost_forces).
 #pragma once
 
-#include <vector>
-
 #include <mpi.h>
 
 #include <memory>
+#include <vector>
 
 #include "distributed/contact_memory.hpp"
 #include "distributed/rcb_partition.hpp"
@@ -35,12 +34,12 @@ namespace tem::distributed {
 
 // Message sizes and counts since the start, for the run's summary and the scaling model.
 struct ExchangeStats {
-  long long migrated = 0;        // bodies that changed owner
-  long long ghosts = 0;          // ghost copies received, summed over the steps
-  long long bytes_sent = 0;      // by this rank, migration and borders
-  long long messages_sent = 0;   // non-empty messages to other ranks
+  long long migrated = 0;       // bodies that changed owner
+  long long ghosts = 0;         // ghost copies received, summed over the steps
+  long long bytes_sent = 0;     // by this rank, migration and borders
+  long long messages_sent = 0;  // non-empty messages to other ranks
   long long balancings = 0;
-  double seconds = 0;            // in migrate + borders
+  double seconds = 0;  // in migrate + borders
 };
 
 class Domain {

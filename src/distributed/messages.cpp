@@ -117,11 +117,13 @@ std::vector<std::vector<double>> exchange_with_all(MPI_Comm comm,
                                                    const std::vector<std::vector<double>>& send) {
   int size = 1;
   MPI_Comm_size(comm, &size);
-  std::vector<int> send_counts(static_cast<size_t>(size)), receive_counts(static_cast<size_t>(size));
+  std::vector<int> send_counts(static_cast<size_t>(size)),
+      receive_counts(static_cast<size_t>(size));
   std::vector<double> flat;
   for (int r = 0; r < size; ++r) {
     send_counts[static_cast<size_t>(r)] = static_cast<int>(send[static_cast<size_t>(r)].size());
-    flat.insert(flat.end(), send[static_cast<size_t>(r)].begin(), send[static_cast<size_t>(r)].end());
+    flat.insert(flat.end(), send[static_cast<size_t>(r)].begin(),
+                send[static_cast<size_t>(r)].end());
   }
   check(MPI_Alltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, comm),
         "MPI_Alltoall");

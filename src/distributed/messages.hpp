@@ -3,9 +3,9 @@
 // all-to-all of counts and one of the data per exchange (exchange_with_all).
 #pragma once
 
-#include <vector>
-
 #include <mpi.h>
+
+#include <vector>
 
 #include "contact/contact_patch.hpp"
 #include "dynamics/body_state.hpp"

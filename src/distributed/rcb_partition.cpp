@@ -1,12 +1,11 @@
 #include "distributed/rcb_partition.hpp"
 
+#include <zoltan.h>
+
 #include <stdexcept>
 #include <string>
 
-#include <zoltan.h>
-
 namespace tem::distributed {
-
 
 RcbPartition::RcbPartition(MPI_Comm comm) : input_(std::make_unique<Input>()) {
   MPI_Comm_rank(comm, &rank_);
@@ -25,9 +24,9 @@ RcbPartition::RcbPartition(MPI_Comm comm) : input_(std::make_unique<Input>()) {
   set("NUM_LID_ENTRIES", "1");
   set("OBJ_WEIGHT_DIM", "1");
   set("RETURN_LISTS", "EXPORT");
-  set("KEEP_CUTS", "1");       // owner_of between balancings
-  set("RCB_REUSE", "1");       // new cuts start from the old ones: few bodies move
-  set("AVERAGE_CUTS", "1");    // a cut midway between two bodies, not on one
+  set("KEEP_CUTS", "1");     // owner_of between balancings
+  set("RCB_REUSE", "1");     // new cuts start from the old ones: few bodies move
+  set("AVERAGE_CUTS", "1");  // a cut midway between two bodies, not on one
   set("IMBALANCE_TOL", "1.05");
   set("DETERMINISTIC", "1");
 
@@ -86,10 +85,10 @@ std::vector<int> RcbPartition::balance(const std::vector<int>& ids,
                 export_local = nullptr;
   int *import_procs = nullptr, *import_parts = nullptr, *export_procs = nullptr,
       *export_parts = nullptr;
-  const int code = Zoltan_LB_Partition(zoltan_, &changes, &gid_entries, &lid_entries, &imports,
-                                       &import_global, &import_local, &import_procs,
-                                       &import_parts, &exports, &export_global, &export_local,
-                                       &export_procs, &export_parts);
+  const int code =
+      Zoltan_LB_Partition(zoltan_, &changes, &gid_entries, &lid_entries, &imports, &import_global,
+                          &import_local, &import_procs, &import_parts, &exports, &export_global,
+                          &export_local, &export_procs, &export_parts);
   if (code != ZOLTAN_OK) throw std::runtime_error("Zoltan RCB partitioning failed");
   std::vector<int> owner(ids.size(), rank_);
   for (int i = 0; i < exports; ++i) owner[export_local[i]] = export_procs[i];

@@ -4,10 +4,10 @@
 // holds its centre (owner_of), found without any message.
 #pragma once
 
+#include <mpi.h>
+
 #include <memory>
 #include <vector>
-
-#include <mpi.h>
 
 #include "tem/types.hpp"
 

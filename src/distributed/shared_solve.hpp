@@ -6,9 +6,9 @@
 // velocities the solve gave it (the overlap correction's move).
 #pragma once
 
-#include <vector>
-
 #include <mpi.h>
+
+#include <vector>
 
 #include "dynamics/body_state.hpp"
 #include "forces/contact_points.hpp"
@@ -45,8 +45,8 @@ class SharedSolve : public SolverSync {
   std::vector<int> touched_ghosts_;
   struct Meeting {
     int body;
-    bool here;                // this rank's rows touch it
-    std::vector<int> ranks;   // the other ranks whose rows touch it
+    bool here;               // this rank's rows touch it
+    std::vector<int> ranks;  // the other ranks whose rows touch it
   };
   std::vector<Meeting> meetings_;
 };

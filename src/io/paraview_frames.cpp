@@ -5,10 +5,11 @@
 
 namespace tem {
 
-std::string bodies_vtu(const Model& model, const State& state) {
+std::string bodies_vtu(const Model& model, const State& state, const std::vector<char>* only) {
   size_t point_count = 0, triangle_count = 0;
-  for (const Body& body : model.bodies)
-    for (const BlockInstance& instance : body.blocks) {
+  for (size_t b = 0; b < model.bodies.size(); ++b)
+    for (const BlockInstance& instance : model.bodies[b].blocks) {
+      if (only && !(*only)[b]) continue;
       point_count += model.blocks[instance.block].nodes().size();
       triangle_count += model.blocks[instance.block].triangles().size();
     }
@@ -25,6 +26,10 @@ std::string bodies_vtu(const Model& model, const State& state) {
 
   int block_id = 0;
   for (size_t b = 0; b < model.bodies.size(); ++b) {
+    if (only && !(*only)[b]) {
+      block_id += static_cast<int>(model.bodies[b].blocks.size());
+      continue;
+    }
     const BodyState& s = state.bodies[b];
     const Vec3 w = s.angular_velocity_world();
     for (const BlockInstance& instance : model.bodies[b].blocks) {
@@ -96,6 +101,43 @@ std::string contacts_vtu(Real time, const std::vector<ContactPatch>& patches,
   vtu.points(points);
   vtu.cells(connectivity, 1, kVtkVertex);
   return vtu.finish();
+}
+
+namespace {
+
+// A parallel file over `pieces`, declaring their point and cell arrays.
+std::string pvtu(const std::string& point_data, const std::string& cell_data,
+                 const std::vector<std::string>& pieces) {
+  std::string text =
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+      "header_type=\"UInt64\">\n<PUnstructuredGrid GhostLevel=\"0\">\n<PPointData>\n" +
+      point_data + "</PPointData>\n<PCellData>\n" + cell_data +
+      "</PCellData>\n<PPoints>\n<PDataArray type=\"Float64\" Name=\"Points\" "
+      "NumberOfComponents=\"3\"/>\n</PPoints>\n";
+  for (const std::string& piece : pieces) text += "<Piece Source=\"" + piece + "\"/>\n";
+  return text + "</PUnstructuredGrid>\n</VTKFile>\n";
+}
+
+std::string declare(const char* type, const char* name, int components = 1) {
+  return std::string("<PDataArray type=\"") + type + "\" Name=\"" + name + "\"" +
+         (components > 1 ? " NumberOfComponents=\"" + std::to_string(components) + "\"" : "") +
+         "/>\n";
+}
+
+}  // namespace
+
+std::string bodies_pvtu(const std::vector<std::string>& pieces) {
+  return pvtu(declare("Float64", "velocity", 3) + declare("Float64", "angular_velocity", 3),
+              declare("Int32", "body_id") + declare("Int32", "block_id"), pieces);
+}
+
+std::string contacts_pvtu(const std::vector<std::string>& pieces) {
+  return pvtu(declare("Float64", "normal", 3) + declare("Float64", "depth") +
+                  declare("Float64", "fn") + declare("Float64", "ft") +
+                  declare("Float64", "force", 3) + declare("Int32", "body_a") +
+                  declare("Int32", "body_b") + declare("Int32", "wall"),
+              "", pieces);
 }
 
 }  // namespace tem

@@ -19,10 +19,18 @@
 
 namespace tem {
 
-std::string bodies_vtu(const Model& model, const State& state);
+// With `only` (one flag per body), the bodies flagged, block_id still counting every body's
+// instances: one rank's piece of a frame (src/distributed/).
+std::string bodies_vtu(const Model& model, const State& state,
+                       const std::vector<char>* only = nullptr);
 
 // `forces` is empty or holds one entry per patch; an empty one writes zero forces.
 std::string contacts_vtu(Real time, const std::vector<ContactPatch>& patches,
                          const std::vector<PatchForce>& forces);
+
+// The .pvtu file that makes one frame of `pieces` (file names relative to the .pvtu's folder),
+// declaring the arrays bodies_vtu / contacts_vtu write.
+std::string bodies_pvtu(const std::vector<std::string>& pieces);
+std::string contacts_pvtu(const std::vector<std::string>& pieces);
 
 }  // namespace tem

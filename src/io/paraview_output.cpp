@@ -1,5 +1,6 @@
 #include "io/paraview_output.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -21,14 +22,20 @@ void write_text_file(const std::string& path, const std::string& text) {
   if (!file) throw std::runtime_error(path + ": cannot be written");
 }
 
-// The step of a frame file name "bodies_<12 digits>.vtu" or "contacts_<12 digits>.vtu" (the
-// directory part ignored), or nullopt for any other name.
+// The step of a frame file name "bodies_<12 digits>.vtu" or "contacts_<12 digits>.vtu", the
+// .pvtu of a frame in pieces (".pvtu") or one of its pieces ("_r<rank>.vtu") (the directory
+// part ignored), or nullopt for any other name.
 std::optional<long long> frame_step(const std::string& path) {
   const std::string name = fs::path(path).filename().string();
   for (const std::string prefix : {"bodies_", "contacts_"}) {
-    if (name.size() != prefix.size() + 12 + 4 || name.compare(0, prefix.size(), prefix) != 0 ||
-        name.compare(name.size() - 4, 4, ".vtu") != 0)
+    if (name.size() < prefix.size() + 12 + 4 || name.compare(0, prefix.size(), prefix) != 0)
       continue;
+    const std::string tail = name.substr(prefix.size() + 12);
+    const bool piece = tail.size() > 6 && tail.compare(0, 2, "_r") == 0 &&
+                       tail.compare(tail.size() - 4, 4, ".vtu") == 0 &&
+                       std::all_of(tail.begin() + 2, tail.end() - 4,
+                                   [](char c) { return c >= '0' && c <= '9'; });
+    if (tail != ".vtu" && tail != ".pvtu" && !piece) continue;
     long long step = 0;
     for (size_t i = prefix.size(); i < prefix.size() + 12; ++i) {
       if (name[i] < '0' || name[i] > '9') return std::nullopt;
@@ -43,10 +50,10 @@ std::optional<long long> frame_step(const std::string& path) {
 constexpr std::string_view kCollectionTail = "</Collection>\n</VTKFile>\n";
 
 // The two DataSet lines of a frame.
-std::string dataset_lines(long long step, const std::string& time) {
+std::string dataset_lines(long long step, const std::string& time, int pieces) {
   const std::string start = "<DataSet timestep=\"" + time + "\" group=\"\" part=\"";
-  return start + "0\" file=\"" + ParaviewOutput::bodies_file(step) + "\"/>\n" + start +
-         "1\" file=\"" + ParaviewOutput::contacts_file(step) + "\"/>\n";
+  return start + "0\" file=\"" + ParaviewOutput::bodies_file(step, pieces) + "\"/>\n" +
+         start + "1\" file=\"" + ParaviewOutput::contacts_file(step, pieces) + "\"/>\n";
 }
 
 // The value of attribute `name` in one XML tag, or nullopt.
@@ -61,16 +68,39 @@ std::optional<std::string> attribute(const std::string& tag, const std::string& 
 
 }  // namespace
 
-std::string ParaviewOutput::bodies_file(long long step) {
+std::string ParaviewOutput::bodies_file(long long step, int pieces) {
   char name[64];
-  std::snprintf(name, sizeof name, "paraview/bodies_%012lld.vtu", step);
+  std::snprintf(name, sizeof name, "paraview/bodies_%012lld.%s", step, pieces > 0 ? "pvtu" : "vtu");
   return name;
 }
 
-std::string ParaviewOutput::contacts_file(long long step) {
+std::string ParaviewOutput::contacts_file(long long step, int pieces) {
   char name[64];
-  std::snprintf(name, sizeof name, "paraview/contacts_%012lld.vtu", step);
+  std::snprintf(name, sizeof name, "paraview/contacts_%012lld.%s", step,
+                pieces > 0 ? "pvtu" : "vtu");
   return name;
+}
+
+std::string ParaviewOutput::bodies_piece(long long step, int rank) {
+  char name[80];
+  std::snprintf(name, sizeof name, "paraview/bodies_%012lld_r%d.vtu", step, rank);
+  return name;
+}
+
+std::string ParaviewOutput::contacts_piece(long long step, int rank) {
+  char name[80];
+  std::snprintf(name, sizeof name, "paraview/contacts_%012lld_r%d.vtu", step, rank);
+  return name;
+}
+
+void ParaviewOutput::write_piece(const std::string& directory, const Model& model,
+                                 const State& state, const std::vector<char>& owned,
+                                 const std::vector<ContactPatch>& patches,
+                                 const std::vector<PatchForce>& forces, int rank) {
+  write_text_file(directory + "/" + bodies_piece(state.step, rank),
+                  bodies_vtu(model, state, &owned));
+  write_text_file(directory + "/" + contacts_piece(state.step, rank),
+                  contacts_vtu(state.time, patches, forces));
 }
 
 ParaviewOutput::ParaviewOutput(const std::string& directory, const Model& /*model*/,
@@ -93,7 +123,16 @@ ParaviewOutput::ParaviewOutput(const std::string& directory, const Model& /*mode
       const auto file = attribute(line, "file");
       const auto step = file ? frame_step(*file) : std::nullopt;
       if (!time || !step || *step > keep_through) continue;
-      if (frames_.empty() || frames_.back().step != *step) frames_.push_back({*step, *time});
+      // A frame in pieces: as many as its .pvtu lists.
+      int pieces = 0;
+      if (file->size() > 5 && file->compare(file->size() - 5, 5, ".pvtu") == 0) {
+        std::ifstream pvtu(directory + "/" + *file);
+        std::string tag;
+        while (std::getline(pvtu, tag)) pieces += tag.find("<Piece ") != std::string::npos;
+        pieces = std::max(pieces, 1);
+      }
+      if (frames_.empty() || frames_.back().step != *step)
+        frames_.push_back({*step, *time, pieces});
     }
   }
 
@@ -108,12 +147,24 @@ ParaviewOutput::ParaviewOutput(const std::string& directory, const Model& /*mode
 void ParaviewOutput::write(const Model& model, const State& state, const Workspace& workspace) {
   const bool replaces = !frames_.empty() && frames_.back().step >= state.step;
   while (!frames_.empty() && frames_.back().step >= state.step) frames_.pop_back();
-  write_text_file(directory_ + "/" + bodies_file(state.step), bodies_vtu(model, state));
-  write_text_file(directory_ + "/" + contacts_file(state.step),
-                  contacts_vtu(state.time, workspace.patches, workspace.forces.patch_forces));
+  if (pieces_ > 0) {
+    // The ranks wrote their pieces; the frame is the .pvtu over them (names relative to it).
+    std::vector<std::string> bodies, contacts;
+    for (int r = 0; r < pieces_; ++r) {
+      bodies.push_back(fs::path(bodies_piece(state.step, r)).filename().string());
+      contacts.push_back(fs::path(contacts_piece(state.step, r)).filename().string());
+    }
+    write_text_file(directory_ + "/" + bodies_file(state.step, pieces_), bodies_pvtu(bodies));
+    write_text_file(directory_ + "/" + contacts_file(state.step, pieces_),
+                    contacts_pvtu(contacts));
+  } else {
+    write_text_file(directory_ + "/" + bodies_file(state.step), bodies_vtu(model, state));
+    write_text_file(directory_ + "/" + contacts_file(state.step),
+                    contacts_vtu(state.time, workspace.patches, workspace.forces.patch_forces));
+  }
   std::string time;
   append_number(time, state.time);
-  frames_.push_back({state.step, time});
+  frames_.push_back({state.step, time, pieces_});
   if (replaces)
     write_collection();
   else
@@ -125,7 +176,7 @@ void ParaviewOutput::write_collection() {
       "<?xml version=\"1.0\"?>\n"
       "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       "<Collection>\n";
-  for (const Frame& frame : frames_) text += dataset_lines(frame.step, frame.time);
+  for (const Frame& frame : frames_) text += dataset_lines(frame.step, frame.time, frame.pieces);
   tail_offset_ = static_cast<long long>(text.size());
   text += kCollectionTail;
 
@@ -138,7 +189,7 @@ void ParaviewOutput::write_collection() {
 
 void ParaviewOutput::append_to_collection() {
   const Frame& frame = frames_.back();
-  const std::string lines = dataset_lines(frame.step, frame.time);
+  const std::string lines = dataset_lines(frame.step, frame.time, frame.pieces);
   const std::string text = lines + std::string(kCollectionTail);
   const std::string path = directory_ + "/tem.pvd";
   // in | out: the file is opened as it is, not emptied.

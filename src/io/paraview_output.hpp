@@ -33,14 +33,29 @@ class ParaviewOutput {
   // already listed replaces it, and drops the frames after it.
   void write(const Model& model, const State& state, const Workspace& workspace);
 
-  // The file names, relative to DIR, of the frame of `step`.
-  static std::string bodies_file(long long step);
-  static std::string contacts_file(long long step);
+  // The file names, relative to DIR, of the frame of `step`: whole .vtu files, or with
+  // `pieces` > 0 the .pvtu files over that many pieces.
+  static std::string bodies_file(long long step, int pieces = 0);
+  static std::string contacts_file(long long step, int pieces = 0);
+  // One rank's piece of a frame, relative to DIR.
+  static std::string bodies_piece(long long step, int rank);
+  static std::string contacts_piece(long long step, int rank);
+
+  // From now on, frames are written as `ranks` pieces (one per MPI rank, each written by its
+  // rank with write_piece before write() is called for the frame), which write() gathers into
+  // .pvtu files: one tem.pvd over per-rank pieces.
+  void use_pieces(int ranks) { pieces_ = ranks; }
+  // One rank's piece of the frame at state.step: the bodies flagged in `owned`, the patches
+  // and forces given.
+  static void write_piece(const std::string& directory, const Model& model, const State& state,
+                          const std::vector<char>& owned, const std::vector<ContactPatch>& patches,
+                          const std::vector<PatchForce>& forces, int rank);
 
  private:
   struct Frame {
     long long step;
     std::string time;  // as written in tem.pvd, so a resumed collection keeps it digit for digit
+    int pieces = 0;    // 0: whole .vtu files; else .pvtu files over that many pieces
   };
 
   // The whole collection, to tem.pvd.tmp renamed over tem.pvd.
@@ -51,6 +66,7 @@ class ParaviewOutput {
   std::string directory_;
   std::vector<Frame> frames_;
   long long tail_offset_ = 0;  // where tem.pvd's closing tags start
+  int pieces_ = 0;
 };
 
 }  // namespace tem

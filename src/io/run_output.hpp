@@ -27,6 +27,9 @@ class RunOutput {
   // How long the files are now (what a checkpoint records).
   OutputSizes sizes();
 
+  // The ParaView collection (output.paraview), or null.
+  ParaviewOutput* paraview() { return paraview_.get(); }
+
  private:
   std::ofstream bodies_, energy_, contacts_;
   bool with_contacts_;

@@ -18,6 +18,9 @@ built with TEM_MPI). Usage: check_mpi_runs.py MODE TEM MPIEXEC SCENE WORKDIR
              1e-6: the outcome of a pour is chaotic, the rearrangement of a few coins)
   semm_resume a SEMM checkpoint written at 2 ranks resumes at 1 rank and on one process without
              MPI to the same bytes, and at 3 ranks to a pile at rest
+  paraview   with output.paraview, 3 ranks write one tem.pvd over .pvtu frames, each over
+             the ranks' pieces, whose arrays are the ones the .pvtu declares, and which hold
+             together one process's bodies (every body's points, bit for bit) and contacts
   refuse     a scene whose contact model the distributed engine does not carry is refused on
              every rank with a reason and exit code 1, not run wrongly
 """
@@ -39,7 +42,8 @@ FILES = ["bodies.csv", "energy.csv", "contacts.csv"]
 
 
 def run(args, ranks=None, expect=0):
-    command = ([MPIEXEC, "--oversubscribe", "-np", str(ranks)] if ranks else []) + [TEM, "run"] + args
+    launcher = [MPIEXEC, "--oversubscribe", "-np", str(ranks)] if ranks else []
+    command = launcher + [TEM, "run"] + args
     done = subprocess.run(command, env=ENV, capture_output=True, text=True, timeout=600)
     if done.returncode != expect:
         sys.exit(f"{' '.join(command)} exited {done.returncode}, not {expect}:\n{done.stderr}")
@@ -147,7 +151,8 @@ elif MODE in ("semm", "semm_resume"):
             else:
                 m = re.search(r"([0-9.]+) ghosts and ([0-9.]+) migrations per step", summary)
                 if not m or float(m.group(1)) <= 0 or float(m.group(2)) <= 0:
-                    sys.exit(f"at {ranks} ranks no body was a ghost or crossed a boundary:\n{summary}")
+                    sys.exit(f"at {ranks} ranks no body was a ghost or crossed a boundary:\n"
+                             f"{summary}")
                 same_pile(serial, out, f"{ranks} ranks")
     else:
         with open(SCENE) as f:
@@ -162,8 +167,75 @@ elif MODE in ("semm", "semm_resume"):
             if "resuming at step" not in summary:
                 sys.exit(f"no resume reported:\n{summary}")
             outs[resumed_at] = out
-        same_files(outs[None], outs[1], "checkpoint of 2 ranks resumed at 1 rank, against one process")
+        same_files(outs[None], outs[1],
+                   "checkpoint of 2 ranks resumed at 1 rank, against one process")
         same_pile(serial, outs[3], "checkpoint of 2 ranks resumed at 3")
+elif MODE == "paraview":
+    import json
+    import xml.etree.ElementTree as ET
+    here = os.path.dirname(os.path.abspath(__file__))
+    sys.path.insert(0, os.path.join(here, "..", "..", "tools"))
+    from tem_vtu import read_vtu
+
+    with open(SCENE) as f:
+        scene = json.load(f)
+    scene["duration"] = 0.05
+    scene.setdefault("output", {})["paraview"] = True
+    path = os.path.join(WORK, "paraview_scene.json")
+    with open(path, "w") as f:
+        json.dump(scene, f)
+    serial, ranks = fresh("one_process"), fresh("three_ranks")
+    run([path, "--out", serial])
+    run([path, "--out", ranks], 3)
+
+    def datasets(out):
+        return [(d.attrib["timestep"], d.attrib["part"], d.attrib["file"])
+                for d in ET.parse(os.path.join(out, "tem.pvd")).getroot().iter("DataSet")]
+
+    whole, pieces = datasets(serial), datasets(ranks)
+    if [(t, p) for t, p, _ in whole] != [(t, p) for t, p, _ in pieces] or not whole:
+        sys.exit("the two collections list different frames")
+    if not all(f.endswith(".pvtu") for _, _, f in pieces):
+        sys.exit("the 3-rank collection does not list .pvtu frames")
+
+    def by_key(arrays, key):
+        """Per value of the cell (bodies) or point (contacts) array `key`: sorted point rows."""
+        points = arrays["Points"]
+        if key == "body_id":
+            conn = arrays["connectivity"].reshape(-1, 3)
+            out = {}
+            for cell, owner in enumerate(arrays["body_id"]):
+                out.setdefault(int(owner), []).extend(tuple(points[i]) for i in conn[cell])
+        else:
+            out = {}
+            for i, owner in enumerate(arrays["body_a"]):
+                out.setdefault(int(owner), []).append(tuple(points[i]))
+        return {k: sorted(v) for k, v in out.items()}
+
+    for (_, part, single), (_, _, parallel) in zip(whole, pieces):
+        _, reference, _ = read_vtu(os.path.join(serial, single))
+        pvtu = ET.parse(os.path.join(ranks, parallel)).getroot()
+        declared = {(a.attrib["Name"], a.attrib["type"], a.attrib.get("NumberOfComponents", "1"))
+                    for a in pvtu.iter("PDataArray")}
+        merged = {}
+        sources = [p.attrib["Source"] for p in pvtu.iter("Piece")]
+        if len(sources) != 3:
+            sys.exit(f"{parallel}: {len(sources)} pieces, not 3")
+        for source in sources:
+            piece_path = os.path.join(ranks, os.path.dirname(parallel), source)
+            piece, arrays, _ = read_vtu(piece_path)
+            have = {(a.attrib["Name"], a.attrib["type"], a.attrib.get("NumberOfComponents", "1"))
+                    for a in piece.iter("DataArray")
+                    if a.attrib["Name"] not in ("connectivity", "offsets", "types")}
+            if have != declared:
+                sys.exit(f"{source}: arrays {sorted(have ^ declared)} differ from the .pvtu's")
+            for k, v in by_key(arrays, "body_id" if part == "0" else "body_a").items():
+                merged.setdefault(k, []).extend(v)
+        merged = {k: sorted(v) for k, v in merged.items()}
+        if merged != by_key(reference, "body_id" if part == "0" else "body_a"):
+            sys.exit(f"{parallel}: its pieces do not hold one process's {single}")
+    print(f"{len(pieces) // 2} frames as .pvtu over 3 pieces each, holding one process's "
+          "bodies and contacts bit for bit")
 elif MODE == "refuse":
     out = fresh("refused")
     message = run([SCENE, "--out", out], 2, expect=1)
