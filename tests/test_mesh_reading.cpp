@@ -234,6 +234,28 @@ TEST(MeshRead, DamagedHeadersAndFacesAreErrors) {
   EXPECT_EQ(error(ply + "end_header", "ply"), "bad: the PLY header has no end_header line");
   EXPECT_EQ(error(ply + "property dou le y\nend_header\n", "ply"),
             "bad: line 5 of the PLY header is not a PLY header line: 'property dou le y'");
+  // What fuzz_mesh_reader found making assimp allocate 16 GB: a list count in the body far
+  // beyond what the file holds, in ASCII and in binary; and a body cut short.
+  const std::string triangle =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n";
+  EXPECT_EQ(error(triangle + "3999999999 0 1 2\n", "ply"),
+            "bad: face 0 of the PLY body has a list whose count '3999999999' is more than the "
+            "values left in the file");
+  EXPECT_EQ(error(triangle, "ply"), "bad: face 0 of the PLY body is missing: the file ends first");
+  EXPECT_EQ(error(triangle.substr(0, triangle.size() - 6), "ply"),
+            "bad: vertex 2 of the PLY body is missing: the file ends first");
+  std::string binary =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 1\n"
+      "property list int int vertex_indices\nend_header\n";
+  binary += std::string(36, '\0');        // three vertices at the origin
+  binary += std::string("\xff\xff\xff\x7f", 4);  // a count of 2^31 - 1
+  binary += std::string(12, '\0');
+  EXPECT_EQ(error(binary, "ply"),
+            "bad: face 0 of the PLY body has a list whose count is more than the bytes left in "
+            "the file");
 }
 
 TEST(MeshRead, LinesAndPointsAreErrors) {

@@ -7,13 +7,13 @@
 // assimp's default logger is its NullLogger (nothing is created here), so reading prints nothing.
 #include "mesh/mesh_reader.hpp"
 
-#include <assimp/IOSystem.hpp>
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 #include <algorithm>
 #include <array>
+#include <assimp/IOSystem.hpp>
+#include <assimp/Importer.hpp>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <set>
 #include <sstream>
 #include <string_view>
@@ -113,7 +114,8 @@ void screen_scene(const aiScene& scene, const std::string& source) {
         throw MeshError(source + ": the file's data is damaged (a face has no corners)");
       for (unsigned k = 0; k < face.mNumIndices; ++k)
         if (face.mIndices[k] >= mesh->mNumVertices)
-          throw MeshError(source + ": the file's data is damaged (a face refers to a missing vertex)");
+          throw MeshError(source +
+                          ": the file's data is damaged (a face refers to a missing vertex)");
       (face.mNumIndices == 1 ? points : face.mNumIndices == 2 ? lines : polygons) = true;
     }
   }
@@ -191,8 +193,8 @@ void screen_ply_header(std::string_view text, const std::string& source) {
   if (!after.starts_with('\n') && !after.starts_with("\r\n"))
     throw MeshError(source + ": the PLY header has no end_header line");
   static const std::set<std::string> types = {
-      "char",  "uchar", "short", "ushort", "int",    "uint",   "float",   "double", "int8",
-      "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"};
+      "char", "uchar", "short", "ushort", "int",   "uint",   "float",   "double",
+      "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"};
   std::istringstream header{std::string(text.substr(0, end))};
   int number = 0;
   for (std::string line; std::getline(header, line); ++number) {
@@ -206,14 +208,16 @@ void screen_ply_header(std::string_view text, const std::string& source) {
     } else if (keyword == "comment" || keyword == "obj_info") {
       good = true;
     } else if (keyword == "format") {
-      good = words >> a >> b && (a == "ascii" || a == "binary_little_endian" || a == "binary_big_endian");
+      good = words >> a >> b &&
+             (a == "ascii" || a == "binary_little_endian" || a == "binary_big_endian");
     } else if (keyword == "element") {
       unsigned long long count = 0;
       good = words >> a >> count && !(words >> extra);
       if (good) too_many(count, a + " elements", text.size(), source);
     } else if (keyword == "property") {
-      good = words >> a >> b && (a == "list" ? types.count(b) && words >> c >> extra && types.count(c)
-                                            : types.count(a) != 0);
+      good =
+          words >> a >> b && (a == "list" ? types.count(b) && words >> c >> extra && types.count(c)
+                                          : types.count(a) != 0);
     }
     if (!good)
       throw MeshError(source + ": line " + std::to_string(number + 1) +
@@ -279,7 +283,8 @@ void screen_off(std::string_view text, const std::string& source) {
       if (face == faces) break;
       if (!whole_index(tokens[0], 1ull << 20) || std::stoull(tokens[0]) < 3 ||
           tokens.size() < 1 + std::stoull(tokens[0]))
-        refuse("face " + std::to_string(face) + " needs a corner count (3 or more) and as many indices");
+        refuse("face " + std::to_string(face) +
+               " needs a corner count (3 or more) and as many indices");
       for (unsigned long long k = 1; k <= std::stoull(tokens[0]); ++k)
         if (!whole_index(tokens[k], vertices))
           refuse("face " + std::to_string(face) + " has a corner '" + tokens[k].substr(0, 20) +
@@ -292,13 +297,117 @@ void screen_off(std::string_view text, const std::string& source) {
                     " vertices and " + std::to_string(faces) + " faces");
 }
 
+// assimp 5.2's PLY loader also trusts a list's count in the body: a face line "3999999999 ..."
+// made it allocate 16 GB (found by the fuzzer). The body is walked here as the header lays it
+// out, element by element, property by property: a scalar takes one number (ASCII) or its
+// type's bytes (binary); a list's count must be a whole number that the rest of the file can
+// hold, then its items are taken. A body that ends early is refused too.
+void screen_ply_body(std::string_view text, const std::string& source) {
+  struct Property {
+    bool list = false;
+    std::string count_type, type;
+  };
+  struct Element {
+    std::string name;
+    unsigned long long count = 0;
+    std::vector<Property> properties;
+  };
+  static const std::map<std::string, int> sizes = {
+      {"char", 1},  {"uchar", 1},   {"int8", 1},   {"uint8", 1},  {"short", 2}, {"ushort", 2},
+      {"int16", 2}, {"uint16", 2},  {"int", 4},    {"uint", 4},   {"int32", 4}, {"uint32", 4},
+      {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
+  const std::size_t end = text.find("\nend_header");
+  std::size_t at = end + 11;
+  if (at < text.size() && text[at] == '\r') ++at;
+  ++at;  // the newline
+  std::istringstream header{std::string(text.substr(0, end))};
+  std::vector<Element> elements;
+  std::string format;
+  for (std::string line; std::getline(header, line);) {
+    std::istringstream words(line);
+    std::string keyword, a, b, c;
+    words >> keyword;
+    if (keyword == "format") {
+      words >> format;
+    } else if (keyword == "element") {
+      Element e;
+      words >> e.name >> e.count;
+      elements.push_back(e);
+    } else if (keyword == "property" && !elements.empty()) {
+      words >> a >> b >> c;
+      elements.back().properties.push_back(a == "list" ? Property{true, b, c}
+                                                       : Property{false, "", a});
+    }
+  }
+  const std::string_view body = at <= text.size() ? text.substr(at) : std::string_view();
+  auto refuse = [&](const Element& e, unsigned long long i, const std::string& why) {
+    throw MeshError(source + ": " + e.name + " " + std::to_string(i) + " of the PLY body " + why);
+  };
+  if (format == "ascii") {
+    std::istringstream words{std::string(body)};
+    std::vector<std::string> tokens;
+    for (std::string t; words >> t;) tokens.push_back(t);
+    std::size_t next = 0;
+    for (const Element& e : elements)
+      for (unsigned long long i = 0; i < e.count; ++i)
+        for (const Property& p : e.properties) {
+          if (next >= tokens.size()) refuse(e, i, "is missing: the file ends first");
+          if (!p.list) {
+            if (!whole_number(tokens[next++])) refuse(e, i, "has a value that is not a number");
+            continue;
+          }
+          if (!whole_index(tokens[next], tokens.size() - next))
+            refuse(e, i,
+                   "has a list whose count '" + tokens[next].substr(0, 20) +
+                       "' is more than the values left in the file");
+          next += 1 + std::stoull(tokens[next]);
+        }
+    return;
+  }
+  // Binary: counts read in the file's byte order.
+  const bool big = format == "binary_big_endian";
+  std::size_t next = 0;
+  auto read_count = [&](const std::string& type) -> unsigned long long {
+    const int n = sizes.at(type);
+    unsigned long long value = 0;
+    for (int k = 0; k < n; ++k) {
+      const auto byte = static_cast<unsigned char>(body[next + (big ? k : n - 1 - k)]);
+      value = (value << 8) | byte;
+    }
+    const bool is_signed = type == "char" || type == "int8" || type == "short" || type == "int16" ||
+                           type == "int" || type == "int32";
+    if (is_signed && (value >> (8 * n - 1)) & 1) return ~0ull;  // negative: refused below
+    next += static_cast<std::size_t>(n);
+    return value;
+  };
+  for (const Element& e : elements)
+    for (unsigned long long i = 0; i < e.count; ++i)
+      for (const Property& p : e.properties) {
+        if (!p.list) {
+          next += static_cast<std::size_t>(sizes.at(p.type));
+          if (next > body.size()) refuse(e, i, "is missing: the file ends first");
+          continue;
+        }
+        if (next + static_cast<std::size_t>(sizes.at(p.count_type)) > body.size())
+          refuse(e, i, "is missing: the file ends first");
+        const unsigned long long count = read_count(p.count_type);
+        const unsigned long long item = static_cast<unsigned long long>(sizes.at(p.type));
+        if (count == ~0ull || count > (body.size() - next) / item)
+          refuse(e, i, "has a list whose count is more than the bytes left in the file");
+        next += static_cast<std::size_t>(count * item);
+      }
+}
+
 TriangleMesh parse(const void* data, std::size_t size, const std::string& extension,
                    const std::string& source, Real scale) {
   require_supported(extension, source);
   require_scale(scale, source);
   if (!data || size == 0) throw MeshError(source + ": the file is empty");
   const std::string_view text(static_cast<const char*>(data), size);
-  if (extension == "ply") screen_ply_header(text, source);
+  if (extension == "ply") {
+    screen_ply_header(text, source);
+    screen_ply_body(text, source);
+  }
   if (extension == "off") screen_off(text, source);
   Assimp::Importer importer;
   importer.SetIOHandler(new NoFiles);  // the importer owns and deletes it
