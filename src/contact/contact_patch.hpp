@@ -1,6 +1,7 @@
 // A contact patch: one place where two bodies (or a body and a wall) overlap (method.md §5).
 #pragma once
 
+#include <tuple>
 #include <vector>
 
 #include "collision/block_manifold.hpp"
@@ -25,5 +26,14 @@ struct ContactPatch {
   // count 0 for a patch of overlap features.
   Manifold manifold;
 };
+
+// The order of a step's patches (detect_contacts.cpp sorts them so) and of everything made from
+// them: points, friction, penalty springs, contact memory gathered over ranks. By body A, body
+// pairs before wall pairs, then by body B or wall.
+template <class Contact>
+std::tuple<int, bool, int> pair_key(const Contact& c) {
+  const bool wall = c.wall >= 0;
+  return {c.body_a, wall, wall ? c.wall : c.body_b};
+}
 
 }  // namespace tem

@@ -144,12 +144,9 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
   w.order.resize(patches.size());
   for (size_t k = 0; k < patches.size(); ++k) w.order[k] = static_cast<int>(k);
   std::sort(w.order.begin(), w.order.end(), [&](int i, int j) {
-    const ContactPatch &p = patches[static_cast<size_t>(i)], &q = patches[static_cast<size_t>(j)];
-    const bool pw = p.wall >= 0, qw = q.wall >= 0;
-    if (p.body_a != q.body_a) return p.body_a < q.body_a;
-    if (pw != qw) return qw;
-    if (pw ? p.wall != q.wall : p.body_b != q.body_b) return pw ? p.wall < q.wall : p.body_b < q.body_b;
-    return i < j;
+    const auto p = pair_key(patches[static_cast<size_t>(i)]);
+    const auto q = pair_key(patches[static_cast<size_t>(j)]);
+    return p != q ? p < q : i < j;
   });
   if (w.sorted.size() < patches.size()) w.sorted.resize(patches.size());
   for (size_t k = 0; k < patches.size(); ++k)

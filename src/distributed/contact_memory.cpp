@@ -1,19 +1,8 @@
 #include "distributed/contact_memory.hpp"
 
 #include <algorithm>
-#include <tuple>
 
 namespace tem::distributed {
-namespace {
-
-template <class T>
-auto pair_key(const T& c) {
-  const bool wall = c.wall >= 0;
-  return std::make_tuple(c.body_a, wall, wall ? c.wall : c.body_b);
-}
-
-}  // namespace
-
 std::vector<MemoryPatch> memory_patches(const ContactForces& f) {
   std::vector<MemoryPatch> out;
   for (size_t i = 0; i < f.points.size();) {

@@ -12,23 +12,6 @@
 namespace tem::distributed {
 namespace {
 
-// One process's order of contacts and of their memory (detect_contacts.cpp sorts patches so):
-// by body A, body pairs before wall pairs, then by body B or wall. Entries with the same key
-// come from one rank (the owner of A) in that rank's order, so a stable sort of everything
-// gathered gives one process's list.
-struct ContactKey {
-  int a, is_wall, other;
-  bool operator<(const ContactKey& o) const {
-    if (a != o.a) return a < o.a;
-    if (is_wall != o.is_wall) return is_wall < o.is_wall;
-    return other < o.other;
-  }
-};
-template <class T>
-ContactKey key_of(const T& c) {
-  return {c.body_a, c.wall >= 0 ? 1 : 0, c.wall >= 0 ? c.wall : c.body_b};
-}
-
 Aabb empty_box() {
   const Real inf = std::numeric_limits<Real>::infinity();
   return {Vec3::Constant(inf), Vec3::Constant(-inf)};
@@ -375,8 +358,11 @@ void Domain::gather_contacts(const Workspace& w, std::vector<ContactPatch>& patc
       gathered.push_back({std::move(p), f});
     }
   }
-  std::stable_sort(gathered.begin(), gathered.end(),
-                   [](const auto& x, const auto& y) { return key_of(x.first) < key_of(y.first); });
+  // One process's order: entries with the same key come from one rank (the owner of body A)
+  // in that rank's order, so a stable sort on the key restores it.
+  std::stable_sort(gathered.begin(), gathered.end(), [](const auto& x, const auto& y) {
+    return pair_key(x.first) < pair_key(y.first);
+  });
   for (auto& [p, f] : gathered) {
     patches.push_back(std::move(p));
     forces.push_back(f);

@@ -11,17 +11,6 @@
 namespace tem {
 namespace {
 
-// The order of patches (detect_contacts.cpp) and so of the springs made from them: by body A,
-// body pairs before wall pairs, then by body B or wall.
-struct PairKey {
-  int a, is_wall, other;
-  auto operator<=>(const PairKey&) const = default;
-};
-template <class T>
-PairKey pair_key(const T& c) {
-  return {c.body_a, c.wall >= 0 ? 1 : 0, c.wall >= 0 ? c.wall : c.body_b};
-}
-
 // The spring of the last step for this patch: same pair, nearest within 1% of A's size. The
 // last step's springs are in patch order, so the pair's are found by bisection, not by a scan
 // of all of them (which made a pile's force stage quadratic in its contacts).
@@ -30,10 +19,10 @@ Vec3 remembered_stretch(const Model& model, const std::vector<PenaltySpring>& ol
   const Real reach = 0.01 * body_size(model, p.body_a);
   const PenaltySpring* best = nullptr;
   Real best_distance = reach;
-  const PairKey key = pair_key(p);
+  const auto key = pair_key(p);
   const auto first = std::lower_bound(
       old.begin(), old.end(), key,
-      [](const PenaltySpring& s, const PairKey& k) { return pair_key(s) < k; });
+      [](const PenaltySpring& s, const decltype(key)& k) { return pair_key(s) < k; });
   for (auto it = first; it != old.end() && pair_key(*it) == key; ++it) {
     const PenaltySpring& s = *it;
     const Real d = (s.point - p.point).norm();

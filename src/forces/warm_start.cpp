@@ -1,23 +1,8 @@
 #include "forces/warm_start.hpp"
 
 #include <algorithm>
-#include <tuple>
 
 namespace tem {
-namespace {
-
-// The order of detect_contacts' patches: by body A, other bodies before walls, then by index.
-auto pair_key(const ContactPoint& c) {
-  const bool wall = c.wall >= 0;
-  return std::make_tuple(c.body_a, wall, wall ? c.wall : c.body_b);
-}
-
-auto pair_key(const PatchFriction& p) {
-  const bool wall = p.wall >= 0;
-  return std::make_tuple(p.body_a, wall, wall ? p.wall : p.body_b);
-}
-
-}  // namespace
 
 void warm_start(const std::vector<ContactPoint>& previous,
                 const std::vector<PointImpulse>& previous_impulses,
