@@ -30,7 +30,7 @@ int agreed_code(int mine) {
 void print_distributed_summary(const distributed::Domain& domain, long long steps, double wall) {
   const distributed::ExchangeStats& s = domain.stats();
   // Per rank: owned bodies, seconds in exchanges, bytes sent; min and max over ranks.
-  const double mine[3] = {static_cast<double>(domain.owned_count(Workspace{})), s.seconds,
+  const double mine[3] = {static_cast<double>(domain.owned_count()), s.seconds,
                           static_cast<double>(s.bytes_sent)};
   double most[3], least[3];
   MPI_Reduce(mine, most, 3, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
@@ -129,7 +129,7 @@ int run_distributed_command(const std::string& scene_file, const std::string& ou
   distributed::RunResult result;
   const auto start = std::chrono::steady_clock::now();
   try {
-    distributed::Domain domain(MPI_COMM_WORLD, impl.model);
+    distributed::Domain domain(MPI_COMM_WORLD);
     domain.start(impl.model, impl.state, impl.workspace);
     result = distributed::run_steps(
         domain, impl.model, impl.state, impl.workspace, plan, [&] { return stop.requested(); },

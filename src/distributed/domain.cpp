@@ -67,15 +67,12 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-Domain::Domain(MPI_Comm comm, const Model& model) : comm_(comm), partition_(comm) {
+Domain::Domain(MPI_Comm comm) : comm_(comm), partition_(comm) {
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &size_);
-  (void)model;
 }
 
-long long Domain::owned_count(const Workspace&) const {
-  return static_cast<long long>(owned_ids_.size());
-}
+long long Domain::owned_count() const { return static_cast<long long>(owned_ids_.size()); }
 
 void Domain::start(const Model& model, const State& state, Workspace& w) {
   const int n = static_cast<int>(model.bodies.size());

@@ -44,7 +44,7 @@ struct ExchangeStats {
 
 class Domain {
  public:
-  Domain(MPI_Comm comm, const Model& model);
+  explicit Domain(MPI_Comm comm);
 
   // The first ownership: every rank holds the same full `state` (a new run or a checkpoint
   // read by every rank). Balances by each body's block count, then keeps, of `forces`' memory,
@@ -76,7 +76,7 @@ class Domain {
 
   int rank() const { return rank_; }
   int size() const { return size_; }
-  long long owned_count(const Workspace& w) const;
+  long long owned_count() const;
   const ExchangeStats& stats() const { return stats_; }
   const SharedSolve* shared_solve() const { return shared_.get(); }
 
