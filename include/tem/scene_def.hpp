@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "tem/process_def.hpp"
 #include "tem/types.hpp"
 
 namespace tem {
@@ -87,6 +88,14 @@ struct BodyDef {
   Vec3 velocity = Vec3::Zero();          // of the centre of mass, world axes
   Vec3 angular_velocity = Vec3::Zero();  // world axes
   bool fixed = false;
+  // Granular processes (process_def.hpp): the body's material ("" for contact.friction and
+  // contact.restitution), its prescribed motion, and the time it is taken away (a gate).
+  std::string material;
+  std::optional<MotionDef> motion;
+  std::optional<Real> removed_at;
+  // A template's size factor drawn per copy (fill and inlet bodies only): uniform in
+  // [min, max]; absent: every copy the template's own size.
+  std::optional<ScaleDef> scale;
 };
 
 // Particle insertion (docs/scene_format.md, `fill`): `count` copies of one body, named
@@ -99,7 +108,23 @@ struct FillDef {
   int count = 0;
   Vec3 region_min = Vec3::Zero(), region_max = Vec3::Zero();
   std::uint64_t seed = 1;
-  BodyDef body;  // the template: shape, density, velocity, angular_velocity, fixed
+  BodyDef body;  // the template: shape, density, velocity, angular_velocity, fixed, scale
+};
+
+// Bodies created during the run (docs/processes.md): copies of `body` placed in `region` where
+// they overlap nothing, `rate` per second from `start` on, `count` in all, named `name_<k>`.
+// Each copy starts with `velocity` (world axes) and, with body.scale, a size factor of its own.
+// A copy that finds no room waits for the next step.
+struct InletDef {
+  std::string path;  // "inlets[i]"
+  std::string name;
+  RegionDef region;
+  Real rate = 0;  // bodies per second
+  int count = 0;
+  Real start = 0;
+  std::uint64_t seed = 1;
+  Vec3 velocity = Vec3::Zero();
+  BodyDef body;  // the template: shape, density, material, scale (no name or pose)
 };
 
 struct ContactDef {
@@ -128,16 +153,22 @@ struct ContactDef {
   // default), 0 for none (contact only after overlap).
   std::optional<Real> margin;
   ContactSolver solver = ContactSolver::rows;
+  // Coefficients of named pairs of materials (process_def.hpp), overriding the rule for pairs
+  // without an entry.
+  std::vector<MaterialPairDef> pairs;
 };
 
 struct WallDef {
   Vec3 point = Vec3::Zero();
   Vec3 normal = Vec3::UnitZ();  // unit, pointing into the space where bodies live
+  std::string material;         // "" : contact.friction and contact.restitution
+  std::optional<Real> removed_at;  // the wall takes part until then
 };
 
 struct ContainerDef {
   Vec3 min = Vec3::Zero();
   Vec3 max = Vec3::Ones();
+  std::string material;  // of its six faces
 };
 
 struct OutputDef {
@@ -162,6 +193,11 @@ struct SceneDef {
   std::vector<BodyDef> bodies;
   std::vector<FillDef> fill;  // bodies made by insertion, after `bodies`
   OutputDef output;
+  // Granular processes (process_def.hpp).
+  std::vector<MaterialDef> materials;  // in name order
+  std::vector<InletDef> inlets;
+  std::vector<OutletDef> outlets;
+  std::vector<SensorDef> sensors;
 };
 
 // A problem in a scene that names where: `path` is the JSON path (e.g. "bodies[1].shape.radius").

@@ -18,6 +18,37 @@ std::string with_label(const std::string& label, const std::string& text) {
   return label.empty() ? text : label + ": " + text;
 }
 
+int material_index(const Model& model, const std::string& name) {
+  for (int m = 0; m < model.material_count(); ++m)
+    if (model.material_names[m] == name) return m;
+  return 0;  // the reader has refused unknown names
+}
+
+// The coefficient table: contact.pairs where they name a pair, else the rule (interface.md):
+// the smaller friction, the smaller restitution and the larger rolling resistance.
+void build_materials(const SceneDef& scene, Model& model) {
+  std::vector<PairCoefficients> own{{scene.contact.friction, scene.contact.restitution, 0}};
+  for (const MaterialDef& m : scene.materials) {
+    model.material_names.push_back(m.name);
+    own.push_back({m.friction, m.restitution, m.rolling_resistance});
+  }
+  const size_t n = own.size();
+  model.pairs.resize(n * n);
+  for (size_t a = 0; a < n; ++a)
+    for (size_t b = 0; b < n; ++b)
+      model.pairs[a * n + b] = {std::min(own[a].friction, own[b].friction),
+                                std::min(own[a].restitution, own[b].restitution),
+                                std::max(own[a].rolling_resistance, own[b].rolling_resistance)};
+  for (const MaterialPairDef& p : scene.contact.pairs) {
+    const size_t a = material_index(model, p.first), b = material_index(model, p.second);
+    PairCoefficients c = model.pairs[a * n + b];
+    if (p.friction) c.friction = *p.friction;
+    if (p.restitution) c.restitution = *p.restitution;
+    if (p.rolling_resistance) c.rolling_resistance = *p.rolling_resistance;
+    model.pairs[a * n + b] = model.pairs[b * n + a] = c;
+  }
+}
+
 Body build_body(const BodyDef& def, Model& model) {
   if (!(def.density > 0) || !std::isfinite(def.density))
     throw SceneError(def.path + ".density", "must be a positive number");
@@ -29,6 +60,9 @@ Body build_body(const BodyDef& def, Model& model) {
   body.start_rotation = def.rotation;
   body.start_velocity = def.velocity;
   body.start_angular_velocity = def.angular_velocity;
+  body.material = material_index(model, def.material);
+  body.motion = def.motion;
+  if (def.removed_at) body.removed_at = *def.removed_at;
 
   std::vector<PlacedMass> parts;
   std::map<std::string, std::vector<Real>> nonconvex;  // shape path -> how far each sticks out
@@ -72,15 +106,20 @@ Body build_body(const BodyDef& def, Model& model) {
 Model build_model(const SceneDef& scene) {
   Model model;
   model.scene = scene;
+  build_materials(scene, model);
+  constexpr Real never = std::numeric_limits<Real>::infinity();
   if (scene.container) {
     const ContainerDef& c = *scene.container;
+    const int material = material_index(model, c.material);
     for (int axis = 0; axis < 3; ++axis) {
       const Vec3 n = Vec3::Unit(axis);
-      model.walls.push_back({c.min, n});
-      model.walls.push_back({c.max, -n});
+      model.walls.push_back({c.min, n, material, never});
+      model.walls.push_back({c.max, -n, material, never});
     }
   }
-  for (const WallDef& w : scene.walls) model.walls.push_back({w.point, w.normal.normalized()});
+  for (const WallDef& w : scene.walls)
+    model.walls.push_back({w.point, w.normal.normalized(), material_index(model, w.material),
+                           w.removed_at.value_or(never)});
   for (const BodyDef& def : scene.bodies) model.bodies.push_back(build_body(def, model));
   for (const FillDef& fill : scene.fill) {
     // One template body: its blocks are built once and shared by every copy.

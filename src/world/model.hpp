@@ -3,6 +3,8 @@
 // body_state.hpp) holds what a step changes.
 #pragma once
 
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,11 +40,28 @@ struct Body {
   Mat3 start_rotation = Mat3::Identity();
   Vec3 start_velocity = Vec3::Zero();
   Vec3 start_angular_velocity = Vec3::Zero();
+  // Granular processes: the body's material (an index into Model::material_names; 0 is none),
+  // its prescribed motion (a kinematic body: `fixed` is false and it is never pushed), and the
+  // time it is taken away (infinity: never).
+  int material = 0;
+  std::optional<MotionDef> motion;
+  Real removed_at = std::numeric_limits<Real>::infinity();
+  // Bodies that move only as they are told: fixed ones and those with a prescribed motion.
+  bool driven() const { return fixed || motion.has_value(); }
 };
 
 struct Wall {
   Vec3 point;
   Vec3 normal;  // unit, into the space where bodies live
+  int material = 0;
+  Real removed_at = std::numeric_limits<Real>::infinity();  // takes part while time < this
+};
+
+// The contact coefficients of a pair of materials.
+struct PairCoefficients {
+  Real friction = 0;
+  Real restitution = 0;
+  Real rolling_resistance = 0;
 };
 
 struct Model {
@@ -51,6 +70,15 @@ struct Model {
   std::vector<Body> bodies;           // the scene's `bodies`, then those of each `fill`
   std::vector<Wall> walls;            // the container's six inner faces, then the scene's `walls`
   std::vector<std::string> warnings;  // accepted defects, e.g. a non-convex block allowed
+  // Materials: index 0 stands for "no material" (contact.friction, contact.restitution, no
+  // rolling resistance), then the scene's materials in name order. `pairs` holds the
+  // coefficients of every pair, material_count() squared, symmetric.
+  std::vector<std::string> material_names{""};
+  std::vector<PairCoefficients> pairs;
+  int material_count() const { return static_cast<int>(material_names.size()); }
+  const PairCoefficients& coefficients(int material_a, int material_b) const {
+    return pairs[static_cast<size_t>(material_a) * material_names.size() + material_b];
+  }
 };
 
 // Builds blocks, elements and mass properties. Throws SceneError naming the JSON path of the
