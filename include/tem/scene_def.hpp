@@ -159,6 +159,9 @@ struct ContactDef {
 };
 
 struct WallDef {
+  // A constructor, so that {point, normal} still makes a wall without a warning about the
+  // fields that came later.
+  WallDef(const Vec3& p = Vec3::Zero(), const Vec3& n = Vec3::UnitZ()) : point(p), normal(n) {}
   Vec3 point = Vec3::Zero();
   Vec3 normal = Vec3::UnitZ();  // unit, pointing into the space where bodies live
   std::string material;         // "" : contact.friction and contact.restitution
@@ -166,6 +169,7 @@ struct WallDef {
 };
 
 struct ContainerDef {
+  ContainerDef(const Vec3& lo = Vec3::Zero(), const Vec3& hi = Vec3::Ones()) : min(lo), max(hi) {}
   Vec3 min = Vec3::Zero();
   Vec3 max = Vec3::Ones();
   std::string material;  // of its six faces

@@ -51,7 +51,8 @@ Checkpoint read_matching_checkpoint(const Model& model, const std::string& path,
   if (c.scene_fingerprint != scene_fingerprint(model.scene))
     throw std::runtime_error(path + " was taken of another scene than " + scene_name +
                              " (only duration and checkpoint_interval may change)");
-  if (c.state.bodies.size() != model.bodies.size())
+  // Where bodies come and go, the checkpoint's tags say which are there (restore checks them).
+  if (!population_changes(model.scene) && c.state.bodies.size() != model.bodies.size())
     throw std::runtime_error(path + " holds " + std::to_string(c.state.bodies.size()) +
                              " bodies, the scene " + std::to_string(model.bodies.size()));
   return c;
@@ -68,12 +69,29 @@ Simulation::Impl::Impl(Model m) : model(std::move(m)) {
   const size_t n = model.bodies.size();
   workspace.loads.force.assign(n, Vec3::Zero());
   workspace.loads.torque.assign(n, Vec3::Zero());
-  quaternions.resize(4 * n);
-  angular_velocities.resize(3 * n);
+  if (population_changes(model.scene)) initial_bodies = model.bodies;
+  reserve_capacity();
+  try {
+    start_population(model, state, links(), removed);
+  } catch (const SceneError& e) {
+    throw SceneLoadError(format_problem(model.scene.source, {e.path(), e.reason()}));
+  }
   refresh_views();
 }
 
+void Simulation::Impl::reserve_capacity() {
+  const size_t capacity = population_capacity(model);
+  state.bodies.reserve(capacity);
+  state.tags.reserve(capacity);
+  workspace.loads.force.reserve(capacity);
+  workspace.loads.torque.reserve(capacity);
+  quaternions.reserve(4 * capacity);
+  angular_velocities.reserve(3 * capacity);
+}
+
 void Simulation::Impl::refresh_views() {
+  quaternions.resize(4 * state.bodies.size());
+  angular_velocities.resize(3 * state.bodies.size());
   for (size_t i = 0; i < state.bodies.size(); ++i) {
     const BodyState& s = state.bodies[i];
     const Quat q = attitude_quaternion(s.g);
@@ -88,6 +106,12 @@ void Simulation::Impl::refresh_views() {
 
 void Simulation::Impl::restore(const Checkpoint& checkpoint) {
   state = checkpoint.state;
+  if (population_changes(model.scene)) restore_population(model, initial_bodies, state);
+  const size_t n = model.bodies.size();
+  workspace.loads.force.assign(n, Vec3::Zero());
+  workspace.loads.torque.assign(n, Vec3::Zero());
+  removed.clear();
+  reserve_capacity();
   restore_memory(checkpoint, workspace.forces);
   refresh_views();
 }
@@ -102,12 +126,16 @@ void Simulation::Impl::start_recording(const std::string& dir, std::unique_ptr<R
                          : 0;
   first_step = state.step;
   written_step = -1;
+  // Bodies that left at the start (an outlet holding some, removed_at 0) before recording.
+  output->write_removed(removed);
+  removed.clear();
 }
 
 void Simulation::Impl::write_row() {
   workspace.loads.update_active();
   find_contact_forces(model, state, workspace);
   output->write(model, state, workspace);
+  output->write_sensors(model, state.time, take_sensor_readings(model, state, workspace.forces));
   written_step = state.step;
 }
 
@@ -121,9 +149,17 @@ void Simulation::Impl::advance_one() {
   find_contact_forces(model, state, workspace);
   if (output && k % every == 0 && written_step != k) {
     output->write(model, state, workspace);
+    output->write_sensors(model, state.time,
+                          take_sensor_readings(model, state, workspace.forces));
     written_step = k;
   }
   advance(model, state, workspace);
+  // 0. Population (for the state this step leaves): outlets and removed_at, then inlets.
+  if (population_changes(model.scene)) {
+    update_population(model, state, links(), removed);
+    if (output) output->write_removed(removed);
+    removed.clear();
+  }
   stepped = true;
 }
 

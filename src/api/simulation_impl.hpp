@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/run_output.hpp"
+#include "process/population.hpp"
 #include "simulation/step.hpp"
 #include "tem/simulation.hpp"
 
@@ -23,6 +24,11 @@ struct Simulation::Impl {
   std::vector<Real> quaternions;         // 4 per body, [w, x, y, z]
   std::vector<Real> angular_velocities;  // 3 per body, world axes
   bool stepped = false;                  // contacts() has a step to report
+  // Granular processes: the bodies at the start (kept where bodies come and go, to rebuild the
+  // Model's bodies from a checkpoint), and the bodies that left since the last row of
+  // removed.csv.
+  std::vector<Body> initial_bodies;
+  std::vector<RemovedBody> removed;
 
   // Recording (record(), resume_recording()).
   std::unique_ptr<RunOutput> output;
@@ -33,6 +39,10 @@ struct Simulation::Impl {
   long long written_step = -1;     // the step whose row was written last
 
   explicit Impl(Model m);
+  PopulationLinks links() { return {&workspace.forces, &workspace.patches, &workspace.loads}; }
+  // Room for every body the run can hold, so that the state arrays (and the views on them)
+  // never move when bodies are added.
+  void reserve_capacity();
   void refresh_views();
   void restore(const Checkpoint& checkpoint);  // state and contact memory, then the views
   // Output from the current step on into `dir` through `out` (new, or reopened at a checkpoint).

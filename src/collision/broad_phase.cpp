@@ -46,7 +46,10 @@ void BroadPhase::update(const Model& model, const State& state, const std::vecto
   } else {
     size_t block_count = 0;
     for (const Body& body : model.bodies) block_count += body.blocks.size();
-    if (built_for_subset_ || proxies_.size() != block_count) build_proxies(model, nullptr);
+    if (built_for_subset_ || proxies_.size() != block_count ||
+        population_version_ != model.population_version)
+      build_proxies(model, nullptr);
+    population_version_ = model.population_version;
     built_for_subset_ = false;
   }
 
@@ -64,7 +67,7 @@ void BroadPhase::update(const Model& model, const State& state, const std::vecto
     }
   }
   find_block_pairs(model);
-  find_wall_pairs(model, reach);
+  find_wall_pairs(model, reach, state.time);
   if (subset) keep_owned_pairs(*subset);
 }
 
@@ -124,7 +127,7 @@ void BroadPhase::find_block_pairs(const Model& model) {
   auto may_touch = [&](int i, int j) {
     const BlockProxy &p = proxies_[i], &q = proxies_[j];
     if (p.body == q.body) return false;
-    if (model.bodies[p.body].fixed && model.bodies[q.body].fixed) return false;
+    if (model.bodies[p.body].driven() && model.bodies[q.body].driven()) return false;
     return bounds_[i].overlaps(bounds_[j]);
   };
   // Pairs within each cell, each counted only in the cell of its intersection's lower corner.
@@ -155,15 +158,16 @@ void BroadPhase::find_block_pairs(const Model& model) {
   });
 }
 
-void BroadPhase::find_wall_pairs(const Model& model, const std::vector<Real>& reach) {
+void BroadPhase::find_wall_pairs(const Model& model, const std::vector<Real>& reach, Real time) {
   wall_pairs_.clear();
   for (int i = 0; i < static_cast<int>(proxies_.size()); ++i) {
-    if (model.bodies[proxies_[i].body].fixed) continue;
+    if (model.bodies[proxies_[i].body].driven()) continue;
     const Vec3 centre = (bounds_[i].min + bounds_[i].max) / 2;
     const Vec3 half = (bounds_[i].max - bounds_[i].min) / 2;
     const Real extra = reach.empty() ? 0 : reach[proxies_[i].body];  // bounds grew by one reach
     for (int w = 0; w < static_cast<int>(model.walls.size()); ++w) {
       const Wall& wall = model.walls[w];
+      if (!(time < wall.removed_at)) continue;  // gone (a gate opened)
       // The lowest corner of the bounds along the wall's normal: behind the plane or not.
       if (wall.normal.dot(centre - wall.point) - wall.normal.cwiseAbs().dot(half) < extra)
         wall_pairs_.push_back({i, w});

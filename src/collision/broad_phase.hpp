@@ -70,7 +70,8 @@ class BroadPhase {
   void build_proxies(const Model& model, const BodySubset* subset);
   void keep_owned_pairs(const BodySubset& subset);
   void find_block_pairs(const Model& model);
-  void find_wall_pairs(const Model& model, const std::vector<Real>& reach);
+  // Walls taken away (removed_at) by `time` take no part.
+  void find_wall_pairs(const Model& model, const std::vector<Real>& reach, Real time);
 
   std::vector<BlockProxy> proxies_;
   std::vector<BlockPose> poses_;
@@ -86,6 +87,7 @@ class BroadPhase {
   std::vector<int> large_;
   std::vector<char> is_large_;  // per proxy, kept between steps
   bool built_for_subset_ = false;
+  long long population_version_ = -1;  // Model::population_version the proxies were built for
   std::vector<Real> extents_;
   Real cell_ = 0;
 };

@@ -58,6 +58,14 @@ std::string unsupported_reason(const SceneDef& scene) {
   if (scene.contact.model == ContactModel::semm && scene.contact.solver != ContactSolver::rows)
     return "over MPI ranks SEMM runs with contact.solver 'rows' (the default); 'blocks' is not "
            "distributed: run this scene without mpirun, or with the rows solver";
+  // Granular processes change the bodies or watch them as a whole: not yet shared among ranks
+  // (materials are: each contact's coefficients are its own).
+  bool process = !scene.inlets.empty() || !scene.outlets.empty() || !scene.sensors.empty();
+  for (const BodyDef& b : scene.bodies) process = process || b.motion || b.removed_at;
+  for (const WallDef& w : scene.walls) process = process || w.removed_at.has_value();
+  if (process)
+    return "over MPI ranks TEM does not yet run granular processes (inlets, outlets, sensors, "
+           "prescribed motion, removed_at): run this scene without mpirun (threads: --threads N)";
   return "";
 }
 

@@ -2,6 +2,7 @@
 // the Model and never changes, so a checkpoint is just the State and restarting is exact.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "tem/types.hpp"
@@ -19,10 +20,46 @@ struct BodyState {
   Vec3 angular_velocity_world() const { return g * omega; }
 };
 
+// Who a live body is (granular processes, src/process/): a stable id that outlives the
+// reordering of the arrays, and for a copy made by an inlet, the inlet, the copy's number and
+// its size factor, from which a checkpoint rebuilds it. Bodies of the scene and of its fills
+// have ids 0, 1, ... in the order of Model::bodies at the start and inlet -1.
+struct BodyTag {
+  long long id = 0;
+  int inlet = -1;
+  int copy = 0;
+  Real scale = 1;
+};
+
+// How far an inlet has got: copies placed, and random numbers drawn (its generator is counter
+// based, so this count is its whole state).
+struct InletProgress {
+  long long placed = 0;
+  std::uint64_t draws = 0;
+};
+
+// What a sensor has gathered: a plane's net crossings and their mass since the start; a force
+// sensor's summed contact force and torque (about the world origin) over `steps` steps since
+// its last output row.
+struct SensorTotals {
+  long long count = 0;
+  Real mass = 0;
+  Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+  long long steps = 0;
+};
+
 struct State {
   Real time = 0;
   long long step = 0;
   std::vector<BodyState> bodies;
+  // Granular processes: one tag per body (parallel to `bodies`, ids increasing), the next id
+  // to give, each inlet's progress, each sensor's totals, and the work the bodies with a
+  // prescribed motion have done on the others through contact since the start.
+  std::vector<BodyTag> tags;
+  long long next_id = 0;
+  std::vector<InletProgress> inlets;
+  std::vector<SensorTotals> sensors;
+  Real driven_work = 0;
 };
 
 // Forces and torques from outside TEM (a fluid, a field, a user's law), per body, world axes,

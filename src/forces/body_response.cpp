@@ -31,6 +31,11 @@ void body_responses(const Model& model, const State& state, Real dt,
     const Body& body = model.bodies[i];
     if (body.fixed) return;  // does not move: no response, no velocity
     const BodyState& s = state.bodies[i];
+    if (body.motion) {  // moves as told (process/motion.hpp): no response, its own velocity
+      out[i].velocity = s.v;
+      out[i].angular_velocity = s.g * s.omega;
+      return;
+    }
     const RigidInertia& inertia = body.inertia;
     BodyResponse& r = out[i];
     r.inverse_mass = 1 / inertia.mass;

@@ -42,16 +42,17 @@ inline Vec3 material_point_velocity(const Model& model, const State& state, int 
 }
 
 // Adds a contact force `on_b` acting at `at` (and a pure moment) to body B, and their opposites
-// to body A, as forces and torques about the centres of mass `centres`; fixed bodies and walls
-// (body -1) take nothing.
-inline void add_contact_force(const Model& model, const std::vector<Vec3>& centres, int body_a,
+// to body A, as forces and torques about the centres of mass `centres`; walls (body -1) take
+// nothing. Fixed and driven bodies take theirs too (force sensors read them; the integration
+// leaves such bodies where they are told to be).
+inline void add_contact_force(const Model&, const std::vector<Vec3>& centres, int body_a,
                               int body_b, const Vec3& at, const Vec3& on_b, const Vec3& moment,
                               std::vector<Vec3>& force, std::vector<Vec3>& torque) {
-  if (!model.bodies[body_a].fixed) {
+  {
     force[body_a] -= on_b;
     torque[body_a] -= (at - centres[body_a]).cross(on_b) + moment;
   }
-  if (body_b >= 0 && !model.bodies[body_b].fixed) {
+  if (body_b >= 0) {
     force[body_b] += on_b;
     torque[body_b] += (at - centres[body_b]).cross(on_b) + moment;
   }

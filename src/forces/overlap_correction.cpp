@@ -66,7 +66,7 @@ CorrectionReport correct_overlap(const Model& model, ContactForces& f, Real ener
   report.scale = lift > 0 ? std::clamp<Real>(dissipated / lift, 0, 1) : 1;
   if (report.scale == 0) return report;
   for (size_t b = 0; b < model.bodies.size(); ++b) {
-    if (model.bodies[b].fixed || (sync && !sync->owns(static_cast<int>(b)))) continue;
+    if (model.bodies[b].driven() || (sync && !sync->owns(static_cast<int>(b)))) continue;
     BodyState& s = state.bodies[b];
     s.x += report.scale * dt * moved[b].velocity;
     s.g = cayley(report.scale * dt * moved[b].angular_velocity) * s.g;

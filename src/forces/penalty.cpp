@@ -109,7 +109,7 @@ Real penalty_time_step_limit(const Model& model) {
   const ContactDef& c = model.scene.contact;
   Real limit = std::numeric_limits<Real>::infinity();
   for (size_t b = 0; b < model.bodies.size(); ++b) {
-    if (model.bodies[b].fixed || !(c.stiffness > 0)) continue;
+    if (model.bodies[b].driven() || !(c.stiffness > 0)) continue;
     Real k = c.stiffness;
     if (c.law == PenaltyLaw::hertz)
       k = 1.5 * c.stiffness * std::sqrt(0.01 * body_size(model, static_cast<int>(b)));

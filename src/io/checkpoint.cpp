@@ -13,7 +13,9 @@ namespace tem {
 namespace {
 
 constexpr char kMagic[8] = {'T', 'E', 'M', 'C', 'K', 'P', 'T', '\n'};
-constexpr std::uint32_t kVersion = 1;
+// 2: the population of granular processes (body tags, inlets, sensors, driven work) and the
+// sizes of removed.csv and sensors.csv.
+constexpr std::uint32_t kVersion = 2;
 
 std::uint64_t fnv1a(const char* data, std::size_t size) {
   std::uint64_t h = 14695981039346656037ull;
@@ -101,6 +103,12 @@ void fields(B& b, F&& f) {
   } else if constexpr (std::is_same_v<std::remove_const_t<B>, PatchFriction>) {
     f(b.first), f(b.last), f(b.body_a), f(b.body_b), f(b.wall), f(b.centre), f(b.normal),
         f(b.tangent1), f(b.tangent2), f(b.start_slip), f(b.t1), f(b.t2), f(b.twist);
+  } else if constexpr (std::is_same_v<std::remove_const_t<B>, BodyTag>) {
+    f(b.id), f(b.inlet), f(b.copy), f(b.scale);
+  } else if constexpr (std::is_same_v<std::remove_const_t<B>, InletProgress>) {
+    f(b.placed), f(b.draws);
+  } else if constexpr (std::is_same_v<std::remove_const_t<B>, SensorTotals>) {
+    f(b.count), f(b.mass), f(b.force), f(b.torque), f(b.steps);
   } else {
     static_assert(std::is_same_v<std::remove_const_t<B>, PenaltySpring>);
     f(b.body_a), f(b.body_b), f(b.wall), f(b.point), f(b.stretch);
@@ -159,9 +167,16 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   w.value(c.sizes.bodies);
   w.value(c.sizes.energy);
   w.value(c.sizes.contacts);
+  w.value(c.sizes.removed);
+  w.value(c.sizes.sensors);
   w.value(c.state.time);
   w.value(c.state.step);
   write_records(w, c.state.bodies);
+  write_records(w, c.state.tags);
+  w.value(c.state.next_id);
+  write_records(w, c.state.inlets);
+  write_records(w, c.state.sensors);
+  w.value(c.state.driven_work);
   write_records(w, c.points);
   write_records(w, c.impulses);
   write_records(w, c.friction);
@@ -205,9 +220,16 @@ Checkpoint read_checkpoint(const std::string& path) {
   c.sizes.bodies = r.value<std::int64_t>();
   c.sizes.energy = r.value<std::int64_t>();
   c.sizes.contacts = r.value<std::int64_t>();
+  c.sizes.removed = r.value<std::int64_t>();
+  c.sizes.sensors = r.value<std::int64_t>();
   c.state.time = r.value<Real>();
   c.state.step = r.value<long long>();
   c.state.bodies = read_records<BodyState>(r);
+  c.state.tags = read_records<BodyTag>(r);
+  c.state.next_id = r.value<long long>();
+  c.state.inlets = read_records<InletProgress>(r);
+  c.state.sensors = read_records<SensorTotals>(r);
+  c.state.driven_work = r.value<Real>();
   c.points = read_records<ContactPoint>(r);
   c.impulses = read_records<PointImpulse>(r);
   c.friction = read_records<PatchFriction>(r);

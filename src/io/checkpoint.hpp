@@ -30,6 +30,7 @@ namespace tem {
 // not written by this run).
 struct OutputSizes {
   std::int64_t bodies = 0, energy = 0, contacts = -1;
+  std::int64_t removed = -1, sensors = -1;  // removed.csv, sensors.csv (processes)
 };
 
 struct Checkpoint {

@@ -8,6 +8,7 @@
 #include "io/contacts_csv.hpp"
 #include "io/csv_number.hpp"
 #include "io/scene_writer.hpp"
+#include "process/population.hpp"
 
 namespace tem {
 namespace {
@@ -67,6 +68,14 @@ RunOutput::RunOutput(const std::string& directory, const Model& model, bool cont
   if (contacts)
     open(contacts_, directory + "/contacts.csv", kContactsCsvHeader,
          resume ? resume->contacts : -1);
+  with_removed_ = population_changes(model.scene);
+  if (with_removed_)
+    open(removed_, directory + "/removed.csv", "time,body,x,y,z,vx,vy,vz,mass",
+         resume ? resume->removed : -1);
+  with_sensors_ = !model.scene.sensors.empty();
+  if (with_sensors_)
+    open(sensors_, directory + "/sensors.csv", "time,sensor,count,mass,fx,fy,fz,tx,ty,tz",
+         resume ? resume->sensors : -1);
   if (model.scene.output.paraview)
     // The frame of the checkpoint's step is written again by the resumed run.
     paraview_ = std::make_unique<ParaviewOutput>(
@@ -113,11 +122,45 @@ void RunOutput::write(const Model& model, const State& state, const Workspace& w
   if (paraview_) paraview_->write(model, state, workspace);
 }
 
+void RunOutput::write_removed(const std::vector<RemovedBody>& removed) {
+  if (!with_removed_ || removed.empty()) return;
+  std::string rows;
+  for (const RemovedBody& r : removed) {
+    append_number(rows, r.time);
+    rows += ',' + r.name;
+    for (int k = 0; k < 3; ++k) append_field(rows, r.x[k]);
+    for (int k = 0; k < 3; ++k) append_field(rows, r.v[k]);
+    append_field(rows, r.mass);
+    rows += '\n';
+  }
+  removed_ << rows << std::flush;
+  if (!removed_) throw std::runtime_error("writing removed.csv failed (disk full?)");
+}
+
+void RunOutput::write_sensors(const Model& model, Real time,
+                              const std::vector<SensorReading>& readings) {
+  if (!with_sensors_) return;
+  std::string rows;
+  for (size_t k = 0; k < readings.size(); ++k) {
+    const SensorReading& r = readings[k];
+    append_number(rows, time);
+    rows += ',' + model.scene.sensors[k].name + ',' + std::to_string(r.count);
+    append_field(rows, r.mass);
+    for (int a = 0; a < 3; ++a) append_field(rows, r.force[a]);
+    for (int a = 0; a < 3; ++a) append_field(rows, r.torque[a]);
+    rows += '\n';
+  }
+  sensors_ << rows << std::flush;
+  if (!sensors_) throw std::runtime_error("writing sensors.csv failed (disk full?)");
+}
+
 OutputSizes RunOutput::sizes() {
   OutputSizes s;
   s.bodies = static_cast<std::int64_t>(bodies_.tellp());
   s.energy = static_cast<std::int64_t>(energy_.tellp());
   s.contacts = with_contacts_ ? static_cast<std::int64_t>(contacts_.tellp()) : -1;
+  s.removed = with_removed_ ? static_cast<std::int64_t>(removed_.tellp()) : -1;
+  s.sensors = with_sensors_ ? static_cast<std::int64_t>(sensors_.tellp()) : -1;
   return s;
 }
 

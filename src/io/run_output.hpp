@@ -9,6 +9,8 @@
 
 #include "io/checkpoint.hpp"
 #include "io/paraview_output.hpp"
+#include "process/population.hpp"
+#include "process/sensors.hpp"
 #include "simulation/step.hpp"
 
 namespace tem {
@@ -24,6 +26,11 @@ class RunOutput {
   // Rows for `state`, with the patches and forces of the step that starts from it.
   void write(const Model& model, const State& state, const Workspace& workspace);
 
+  // Rows of removed.csv for bodies that left (scenes where bodies can leave).
+  void write_removed(const std::vector<RemovedBody>& removed);
+  // Rows of sensors.csv at `time` (scenes with sensors).
+  void write_sensors(const Model& model, Real time, const std::vector<SensorReading>& readings);
+
   // How long the files are now (what a checkpoint records).
   OutputSizes sizes();
 
@@ -31,8 +38,9 @@ class RunOutput {
   ParaviewOutput* paraview() { return paraview_.get(); }
 
  private:
-  std::ofstream bodies_, energy_, contacts_;
+  std::ofstream bodies_, energy_, contacts_, removed_, sensors_;
   bool with_contacts_;
+  bool with_removed_ = false, with_sensors_ = false;
   std::unique_ptr<ParaviewOutput> paraview_;  // with output.paraview
 };
 

@@ -6,6 +6,8 @@
 #include "dynamics/integrator.hpp"
 #include "contact/contact_margins.hpp"
 #include "forces/overlap_correction.hpp"
+#include "process/motion.hpp"
+#include "process/sensors.hpp"
 #include "support/parallel.hpp"
 
 namespace tem {
@@ -27,11 +29,23 @@ Real external_work(const Model& model, const ExternalLoads& loads,
   Real work = 0;
   const Real dt = model.scene.time_step;
   for (size_t b = 0; b < model.bodies.size(); ++b) {
-    if (model.bodies[b].fixed) continue;
+    if (model.bodies[b].driven()) continue;
     work += loads.force[b].dot(after[b].x - before[b].x);
     work += loads.torque[b].dot(dt * after[b].angular_velocity_world());
   }
   return work;
+}
+
+// The work the bodies with a prescribed motion do on the others over the step through
+// contact: minus the contact force and torque on each, times its velocities of the step.
+Real driven_work(const Model& model, const State& state, const ContactForces& forces) {
+  Real work = 0;
+  for (size_t b = 0; b < model.bodies.size(); ++b) {
+    if (!model.bodies[b].motion || model.bodies[b].fixed) continue;
+    const BodyState& s = state.bodies[b];
+    work -= forces.force[b].dot(s.v) + forces.torque[b].dot(s.angular_velocity_world());
+  }
+  return work * model.scene.time_step;
 }
 
 }  // namespace
@@ -71,10 +85,17 @@ void advance(const Model& model, State& state, Workspace& w) {
   if (w.sync) correct = w.sync->sum(correct ? 1 : 0) > 0;  // all ranks, or none
   Real energy_before = correct ? system_energies(model, state, w.sync).total() : 0;
   const bool loaded = !w.loads.empty();
-  if (!w.contact.reach.empty() || loaded) w.before = state.bodies;
+  const bool sensing = !scene.sensors.empty();
+  if (!w.contact.reach.empty() || loaded || sensing) w.before = state.bodies;
+  // Prescribed motion (process/motion.hpp): its work on the others is no dissipation either.
+  const Real pushed = model.any_motion && !w.forces.force.empty()
+                          ? driven_work(model, state, w.forces)
+                          : 0;
+  state.driven_work += pushed;
+  energy_before += pushed;
   const bool all = w.subset.empty();
   parallel_for(static_cast<long long>(model.bodies.size()), 256, [&](long long i) {
-    if (model.bodies[i].fixed || (!all && !w.subset.owned[i])) return;
+    if (model.bodies[i].driven() || (!all && !w.subset.owned[i])) return;
     const Vec3 force = loaded ? Vec3(w.forces.force[i] + w.loads.force[i]) : w.forces.force[i];
     const Vec3 torque = loaded ? Vec3(w.forces.torque[i] + w.loads.torque[i]) : w.forces.torque[i];
     integrate(scene.integrator, model.bodies[i].inertia, scene.gravity, force, torque,
@@ -96,6 +117,10 @@ void advance(const Model& model, State& state, Workspace& w) {
   state.time = std::abs(per_second * scene.time_step - 1) < 1e-12
                    ? static_cast<Real>(state.step) / per_second
                    : static_cast<Real>(state.step) * scene.time_step;
+  // Bodies with a prescribed motion go where it puts them at the new time.
+  if (model.any_motion) move_driven_bodies(model, state);
+  // 7. Sensors: plane crossings and the contact forces on the bodies they watch.
+  if (sensing) accumulate_sensors(model, w.before, state, w.forces);
   w.times.integrate += seconds_since(clock);
 
   ++w.times.steps;
@@ -115,6 +140,9 @@ Energies system_energies(const Model& model, const State& state, SolverSync* syn
   Energies e;
   for (size_t i = 0; i < model.bodies.size(); ++i) {
     if (sync && !sync->owns(static_cast<int>(i))) continue;
+    // Bodies with a prescribed motion are driven from outside: their energy is the driver's
+    // (State::driven_work counts what they give the others).
+    if (model.bodies[i].motion) continue;
     const RigidInertia& inertia = model.bodies[i].inertia;
     e.kinetic += kinetic_energy(inertia, state.bodies[i]);
     e.potential += potential_energy(inertia, model.scene.gravity, state.bodies[i]);

@@ -1,5 +1,7 @@
 #include "world/fill.hpp"
 
+#include "world/placement.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -34,6 +36,20 @@ class SphereGrid {
     const int index = static_cast<int>(spheres_.size());
     spheres_.push_back(s);
     for_cells(s, [&](std::vector<int>& slot) { slot.push_back(index); });
+  }
+
+  // The spheres that overlap s, by their insertion order.
+  void overlapping(const Sphere& s, std::vector<int>& out) {
+    out.clear();
+    for_cells(s, [&](std::vector<int>& slot) {
+      for (int i : slot) {
+        const Sphere& o = spheres_[i];
+        if ((o.centre - s.centre).squaredNorm() < (o.radius + s.radius) * (o.radius + s.radius))
+          out.push_back(i);
+      }
+    });
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
   }
 
   bool overlaps(const Sphere& s) {
@@ -88,23 +104,42 @@ void place_fill(const FillDef& fill, const Body& copy, Model& model) {
   std::unordered_set<std::string> names;
   for (const Body& b : model.bodies) names.insert(b.name);
 
-  const Real radius = body_size(model, copy);
-  const Vec3 lo = fill.region_min + Vec3::Constant(radius);
-  const Vec3 hi = fill.region_max - Vec3::Constant(radius);
-  if (!(lo.array() <= hi.array()).all())
+  // With a size factor, the largest copy sets the room each copy is checked for.
+  const Real template_radius = body_size(model, copy);
+  const Real largest = fill.body.scale ? fill.body.scale->max : 1;
+  const Real room = template_radius * largest;
+  const Vec3 lo_all = fill.region_min + Vec3::Constant(room);
+  const Vec3 hi_all = fill.region_max - Vec3::Constant(room);
+  if (!(lo_all.array() <= hi_all.array()).all())
     throw SceneError(fill.path + ".region",
                      "is too small for one body: each side must be at least the body's "
-                     "diameter " + std::to_string(2 * radius));
+                     "diameter " + std::to_string(2 * room));
 
-  SphereGrid grid(fill.region_min, fill.region_max, 2 * radius);
+  // Copies of this fill keep clear of each other's bounding spheres; bodies that were there
+  // before (a drum, a hopper, an earlier fill) are judged by their blocks (placement.hpp), with
+  // their spheres only to find the candidates.
+  SphereGrid grid(fill.region_min, fill.region_max, 2 * room);
+  SphereGrid before(fill.region_min, fill.region_max, 2 * room);
   const State existing = initial_state(model);
-  for (size_t i = 0; i < model.bodies.size(); ++i)
-    grid.insert({existing.bodies[i].x, body_size(model, static_cast<int>(i))});
+  const size_t existing_count = model.bodies.size();
+  for (size_t i = 0; i < existing_count; ++i)
+    before.insert({existing.bodies[i].x, body_size(model, static_cast<int>(i))});
+  std::vector<int> near;
 
   std::mt19937_64 rng(fill.seed);
   model.bodies.reserve(model.bodies.size() + static_cast<size_t>(fill.count));
   for (int n = 0; n < fill.count; ++n) {
     Body body = copy;
+    Real radius = template_radius;
+    if (fill.body.scale) {
+      const Real factor = fill.body.scale->min + unit(rng) * (fill.body.scale->max - fill.body.scale->min);
+      if (factor != 1) {
+        body = build_body(fill.body, model, factor);
+        radius = body_size(model, body);
+      }
+    }
+    const Vec3 lo = fill.region_min + Vec3::Constant(radius);
+    const Vec3 hi = fill.region_max - Vec3::Constant(radius);
     body.name = fill.name + "_" + std::to_string(n);
     if (!names.insert(body.name).second)
       throw SceneError(fill.path + ".name", "makes the body name '" + body.name +
@@ -114,6 +149,11 @@ void place_fill(const FillDef& fill, const Body& copy, Model& model) {
       Vec3 centre;
       for (int k = 0; k < 3; ++k) centre[k] = lo[k] + unit(rng) * (hi[k] - lo[k]);
       if (grid.overlaps({centre, radius})) continue;
+      before.overlapping({centre, radius}, near);
+      bool clear = true;
+      for (int i : near)
+        clear = clear && sphere_clear_of_body(model, model.bodies[i], existing.bodies[i], centre, radius);
+      if (!clear) continue;
       const Real u1 = unit(rng), u2 = unit(rng), u3 = unit(rng);
       body.start_rotation = uniform_rotation(u1, u2, u3);
       // The centre of mass goes to `centre`; the scene's frame origin sits origin_offset from it.

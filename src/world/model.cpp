@@ -49,7 +49,20 @@ void build_materials(const SceneDef& scene, Model& model) {
   }
 }
 
-Body build_body(const BodyDef& def, Model& model) {
+}  // namespace
+
+int add_block(Model& model, Block block) {
+  if (!model.free_blocks.empty()) {
+    const int slot = model.free_blocks.back();
+    model.free_blocks.pop_back();
+    model.blocks[slot] = std::move(block);
+    return slot;
+  }
+  model.blocks.push_back(std::move(block));
+  return static_cast<int>(model.blocks.size() - 1);
+}
+
+Body build_body(const BodyDef& def, Model& model, Real scale) {
   if (!(def.density > 0) || !std::isfinite(def.density))
     throw SceneError(def.path + ".density", "must be a positive number");
   Body body;
@@ -67,19 +80,25 @@ Body build_body(const BodyDef& def, Model& model) {
   std::vector<PlacedMass> parts;
   std::map<std::string, std::vector<Real>> nonconvex;  // shape path -> how far each sticks out
   for (PlacedPolyhedron& placed : shape_polyhedra(def.shape)) {
+    // A copy's size factor scales its blocks before they are built, so that its elements and
+    // mass properties are those of the scaled shape, exactly.
+    if (scale != 1) {
+      for (Vec3& p : placed.polyhedron.points) p *= scale;
+      placed.position *= scale;
+    }
+    int index = -1;
     try {
-      model.blocks.emplace_back(placed.polyhedron);
+      index = add_block(model, Block(placed.polyhedron));
     } catch (const GeometryError& e) {
       std::string reason = with_label(placed.label, e.what());
       if (!placed.advice.empty()) reason += "; " + placed.advice;
       throw SceneError(placed.path, reason);
     }
-    const Block& block = model.blocks.back();
+    const Block& block = model.blocks[index];
     if (!block.convex()) nonconvex[placed.path].push_back(block.nonconvexity());
     const Vec3 centre = placed.rotation * block.centroid_in_input() + placed.position;
     parts.push_back({block_mass_properties(block, def.density), placed.rotation, centre});
-    body.blocks.push_back(
-        {static_cast<int>(model.blocks.size() - 1), placed.rotation, centre, placed.path});
+    body.blocks.push_back({index, placed.rotation, centre, placed.path});
   }
 
   for (const auto& [path, amounts] : nonconvex) {
@@ -98,10 +117,9 @@ Body build_body(const BodyDef& def, Model& model) {
   body.inertia.mass = total.mass;
   body.inertia.inertia = inertia_from_second_moment(total.second_moment);
   body.inertia.inertia_inv = body.inertia.inertia.inverse();
+  body.owns_blocks = scale != 1;
   return body;
 }
-
-}  // namespace
 
 Model build_model(const SceneDef& scene) {
   Model model;
@@ -122,11 +140,31 @@ Model build_model(const SceneDef& scene) {
                            w.removed_at.value_or(never)});
   for (const BodyDef& def : scene.bodies) model.bodies.push_back(build_body(def, model));
   for (const FillDef& fill : scene.fill) {
-    // One template body: its blocks are built once and shared by every copy.
+    // One template body: its blocks are built once and shared by every copy (copies with a
+    // size factor of their own get their own blocks).
     const Body copy = build_body(fill.body, model);
     place_fill(fill, copy, model);
   }
+  for (const InletDef& inlet : scene.inlets) {
+    Body copy = build_body(inlet.body, model);
+    copy.start_velocity = inlet.velocity;
+    model.inlet_templates.push_back(std::move(copy));
+  }
+  assign_force_sensors(model);
+  for (const Body& b : model.bodies) model.any_motion = model.any_motion || b.motion.has_value();
   return model;
+}
+
+void assign_force_sensors(Model& model) {
+  const std::vector<SensorDef>& sensors = model.scene.sensors;
+  for (Body& body : model.bodies) {
+    body.force_sensors.clear();
+    for (size_t k = 0; k < sensors.size(); ++k) {
+      if (sensors[k].type != SensorType::force) continue;
+      for (const std::string& name : sensors[k].bodies)
+        if (name == body.name) body.force_sensors.push_back(static_cast<int>(k));
+    }
+  }
 }
 
 Real body_size(const Model& model, int body) { return body_size(model, model.bodies[body]); }
@@ -148,7 +186,10 @@ State initial_state(const Model& model) {
     s.v = body.start_velocity;
     s.omega = body.start_rotation.transpose() * body.start_angular_velocity;
     state.bodies.push_back(s);
+    state.tags.push_back({state.next_id++, -1, 0, 1});
   }
+  state.inlets.resize(model.scene.inlets.size());
+  state.sensors.resize(model.scene.sensors.size());
   return state;
 }
 

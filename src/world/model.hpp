@@ -46,6 +46,10 @@ struct Body {
   int material = 0;
   std::optional<MotionDef> motion;
   Real removed_at = std::numeric_limits<Real>::infinity();
+  // Force sensors (indices into scene.sensors) that count this body's contact force.
+  std::vector<int> force_sensors;
+  // Whether its blocks are its own (a copy with a size factor), to be freed when it leaves.
+  bool owns_blocks = false;
   // Bodies that move only as they are told: fixed ones and those with a prescribed motion.
   bool driven() const { return fixed || motion.has_value(); }
 };
@@ -64,10 +68,25 @@ struct PairCoefficients {
   Real rolling_resistance = 0;
 };
 
+// What never changes after loading, and the live bodies' constant data.
+//
+// Bodies come and go during a run (inlets, outlets, removal at a time: src/process/). Their
+// constant data (blocks, inertia, material, name) stays here in `bodies`, parallel to the
+// State's, because every stage reads it by body index; the population stage (the only code
+// that changes it) keeps the two aligned, and State::tags says who each body is, so a checkpoint
+// rebuilds `bodies` from the scene and the State alone (docs/processes.md).
 struct Model {
   SceneDef scene;  // the definitions it was built from, defaults filled in
   std::vector<Block> blocks;
-  std::vector<Body> bodies;           // the scene's `bodies`, then those of each `fill`
+  std::vector<int> free_blocks;       // slots of `blocks` left by copies that have gone
+  // The live bodies: at the start the scene's `bodies`, then those of each `fill`; then as
+  // inlets add and outlets remove them.
+  std::vector<Body> bodies;
+  std::vector<Body> inlet_templates;  // one per inlet: the copy at size factor 1
+  // Counts changes of `bodies`: caches keyed on the bodies (the broad phase's) rebuild when it
+  // moves.
+  long long population_version = 0;
+  bool any_motion = false;  // some body has a prescribed motion
   std::vector<Wall> walls;            // the container's six inner faces, then the scene's `walls`
   std::vector<std::string> warnings;  // accepted defects, e.g. a non-convex block allowed
   // Materials: index 0 stands for "no material" (contact.friction, contact.restitution, no
@@ -84,6 +103,14 @@ struct Model {
 // Builds blocks, elements and mass properties. Throws SceneError naming the JSON path of the
 // shape or body at fault.
 Model build_model(const SceneDef& scene);
+
+// One body from its def, its blocks added to model.blocks, every length multiplied by `scale`
+// (a copy's size factor: 1 leaves the shape as it is, bit for bit).
+Body build_body(const BodyDef& def, Model& model, Real scale = 1);
+// Puts a block into a free slot of model.blocks, or at the end; its index.
+int add_block(Model& model, Block block);
+// Fills each body's force_sensors from the scene's sensors.
+void assign_force_sensors(Model& model);
 
 // A body's size: the largest distance from its centre of mass that any of its nodes can have
 // (block offset + block bounding radius). Contact tolerances are fractions of it.

@@ -34,6 +34,17 @@ std::uint64_t state_hash(const State& state) {
     for (int k = 0; k < 3; ++k) mix(h, b.omega[k]);
     for (int k = 0; k < 3; ++k) mix(h, b.prev_torque[k]);
   }
+  // Who the bodies are, once bodies have come or gone (a scene without processes keeps the
+  // hash it always had).
+  bool renumbered = false;
+  for (size_t i = 0; i < state.tags.size() && !renumbered; ++i)
+    renumbered = state.tags[i].id != static_cast<long long>(i) || state.tags[i].inlet >= 0;
+  if (renumbered) {
+    for (const BodyTag& t : state.tags) {
+      mix(h, &t.id, sizeof t.id);
+      mix(h, t.scale);
+    }
+  }
   return h;
 }
 
