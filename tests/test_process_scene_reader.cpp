@@ -51,8 +51,7 @@ const std::string kMaterials =
 // default the materials grain and steel).
 std::string with_body(const std::string& body_extra, const std::string& top_extra = kMaterials) {
   return "{" + top_extra + (top_extra.empty() ? "" : ", ") +
-         R"("bodies": [{"name": "a", "position": [0, 0, 0], "shape": )" + kBox + body_extra +
-         "}]}";
+         R"("bodies": [{"name": "a", "position": [0, 0, 0], "shape": )" + kBox + body_extra + "}]}";
 }
 
 // A scene whose bodies come from one inlet with `inlet_extra` appended to it (the body named
@@ -204,8 +203,8 @@ TEST(ProcessSceneReader, ReadsEveryKeyOfAFullScene) {
 }
 
 TEST(ProcessSceneReader, FillsDefaults) {
-  const SceneDef s = read_good(with_body(R"(, "material": "grain", "motion": {})",
-                                         R"("materials": {"grain": {}})"));
+  const SceneDef s = read_good(
+      with_body(R"(, "material": "grain", "motion": {})", R"("materials": {"grain": {}})"));
   ASSERT_EQ(s.materials.size(), 1u);
   EXPECT_EQ(s.materials[0].friction, 0.3);
   EXPECT_EQ(s.materials[0].restitution, 0.0);
@@ -260,8 +259,8 @@ TEST(ProcessSceneWriter, FullSceneWrittenTwiceGivesTheSameText) {
 }
 
 TEST(ProcessSceneWriter, WritesDefaultsFilledInAndLeavesOutAnInfiniteEnd) {
-  const SceneDef s = read_good(with_body(R"(, "material": "grain", "motion": {})",
-                                         R"("materials": {"grain": {}})"));
+  const SceneDef s = read_good(
+      with_body(R"(, "material": "grain", "motion": {})", R"("materials": {"grain": {}})"));
   const auto j = scene_to_json(s);
   const auto& grain = j["materials"]["grain"];
   EXPECT_EQ(grain["friction"], 0.3);
@@ -345,8 +344,9 @@ TEST(ProcessSceneReader, PairGivenTwiceInEitherOrder) {
 }
 
 TEST(ProcessSceneReader, PairNeedsTwoNamesAndValidCoefficients) {
-  expect_problem(with_body("", kMaterials + R"(, "contact": {"pairs": [{"materials": ["grain"]}]})"),
-                 "contact.pairs[0].materials", {"must be a list of 2 material names"});
+  expect_problem(
+      with_body("", kMaterials + R"(, "contact": {"pairs": [{"materials": ["grain"]}]})"),
+      "contact.pairs[0].materials", {"must be a list of 2 material names"});
   expect_problem(with_body("", kMaterials + R"(, "contact": {"pairs": [{"friction": 1}]})"),
                  "contact.pairs[0]", {"missing required key 'materials'"});
   expect_problem(
@@ -366,9 +366,10 @@ TEST(ProcessSceneReader, EveryMaterialKeyNamesADefinedMaterial) {
                  "walls[0].material", {"unknown material 'wood'"});
   expect_problem(with_inlet("", R"({"shape": )" + kBox + R"(, "material": "wood"})"),
                  "inlets[0].body.material", {"unknown material 'wood'"});
-  expect_problem(with_body("", kMaterials + R"(, "fill": [{"name": "f", "count": 1, )"
-                                            R"("region": {"min": [0, 0, 0], "max": [1, 1, 1]}, )"
-                                            R"("body": {"shape": )" +
+  expect_problem(with_body("", kMaterials +
+                                   R"(, "fill": [{"name": "f", "count": 1, )"
+                                   R"("region": {"min": [0, 0, 0], "max": [1, 1, 1]}, )"
+                                   R"("body": {"shape": )" +
                                    kBox + R"(, "material": "wood"}}])"),
                  "fill[0].body.material", {"unknown material 'wood'"});
   // Without any materials, the message says so.
@@ -444,8 +445,8 @@ TEST(ProcessSceneReader, ScaleBounds) {
 // One inlet of the given rate and count (JSON text).
 std::string inlet_of(const std::string& rate, const std::string& count) {
   return R"({"inlets": [{"name": "feed", "region": {"min": [0, 0, 0], "max": [1, 1, 1]}, )"
-         R"("rate": )" + rate + R"(, "count": )" + count + R"(, "body": {"shape": )" + kBox +
-         "}}]}";
+         R"("rate": )" +
+         rate + R"(, "count": )" + count + R"(, "body": {"shape": )" + kBox + "}}]}";
 }
 
 TEST(ProcessSceneReader, InletRateCountAndStart) {
@@ -459,10 +460,10 @@ TEST(ProcessSceneReader, InletRateCountAndStart) {
   expect_problem(with_inlet(R"(, "seed": 1.5)"), "inlets[0].seed", {"must be an integer"});
   // Not finite: too large for a double.
   expect_problem(with_inlet(R"(, "start": 1e400)"), "inlets[0].start", {"finite"});
-  expect_problem(
-      R"({"inlets": [{"name": "feed", "region": {"min": [0, 0, 0], "max": [1, 1, 1]}, )"
-      R"("rate": 1, "body": {"shape": )" + kBox + "}}]}",
-      "inlets[0]", {"missing required key 'count'"});
+  expect_problem(R"({"inlets": [{"name": "feed", "region": {"min": [0, 0, 0], "max": [1, 1, 1]}, )"
+                 R"("rate": 1, "body": {"shape": )" +
+                     kBox + "}}]}",
+                 "inlets[0]", {"missing required key 'count'"});
 }
 
 TEST(ProcessSceneReader, InletRegionIsABoxInsideTheContainer) {
@@ -473,7 +474,8 @@ TEST(ProcessSceneReader, InletRegionIsABoxInsideTheContainer) {
                                    R"("container": {"min": [0, 0, 0], "max": [4, 4, 4]})"))
                   .ok());
   expect_problem(R"({"inlets": [{"name": "feed", "region": {"min": [0, 0, 0], "max": [1, 0, 1]}, )"
-                 R"("rate": 1, "count": 1, "body": {"shape": )" + kBox + "}}]}",
+                 R"("rate": 1, "count": 1, "body": {"shape": )" +
+                     kBox + "}}]}",
                  "inlets[0].region.max", {"must exceed min", "y"});
 }
 
@@ -489,10 +491,10 @@ TEST(ProcessSceneReader, InletBodyKeysThatGoOnTheInlet) {
 }
 
 TEST(ProcessSceneReader, InletCopiesCollideWithABodyName) {
-  expect_problem(with_inlet("", R"({"shape": )" + kBox + "}",
-                            R"("bodies": [{"name": "feed_3", "position": [9, 9, 9], "shape": )" +
-                                kBox + "}]"),
-                 "inlets[0].name", {"makes the body name 'feed_3'", "bodies[0]"});
+  expect_problem(
+      with_inlet("", R"({"shape": )" + kBox + "}",
+                 R"("bodies": [{"name": "feed_3", "position": [9, 9, 9], "shape": )" + kBox + "}]"),
+      "inlets[0].name", {"makes the body name 'feed_3'", "bodies[0]"});
   // Beyond the count, or not a copy's number as written: no collision.
   for (const char* name : {"feed_10", "feed_03", "feed", "feed_x"}) {
     EXPECT_TRUE(read_text(with_inlet("", R"({"shape": )" + kBox + "}",
@@ -511,11 +513,13 @@ TEST(ProcessSceneReader, InletsAndFillsShareNoName) {
                                 kBox + "}}]"),
                  "inlets[0].name", {"used by both fill[0] and inlets[0]", "same names"});
   const std::string inlet = R"({"name": "feed", "region": {"min": [0, 0, 0], "max": [1, 1, 1]}, )"
-                            R"("rate": 1, "count": 1, "body": {"shape": )" + kBox + "}}";
+                            R"("rate": 1, "count": 1, "body": {"shape": )" +
+                            kBox + "}}";
   expect_problem(R"({"inlets": [)" + inlet + ", " + inlet + "]}", "inlets[1].name",
                  {"used by both inlets[0] and inlets[1]"});
   const std::string fill = R"({"name": "f", "count": 1, "region": {"min": [0, 0, 0], )"
-                           R"("max": [1, 1, 1]}, "body": {"shape": )" + kBox + "}}";
+                           R"("max": [1, 1, 1]}, "body": {"shape": )" +
+                           kBox + "}}";
   expect_problem(R"({"fill": [)" + fill + ", " + fill + "]}", "fill[1].name",
                  {"used by both fill[0] and fill[1]"});
 }
@@ -551,8 +555,9 @@ TEST(ProcessSceneReader, PlaneSensorNeedsANonZeroNormal) {
   expect_problem(with_body("", R"("sensors": [{"name": "s", "type": "plane", )"
                                R"("point": [0, 0, 0], "normal": [0, 0, 0]}])"),
                  "sensors[0].normal", {"must not be zero"});
-  expect_problem(with_body("", R"("sensors": [{"name": "s", "type": "plane", "normal": [0, 0, 1]}])"),
-                 "sensors[0]", {"missing required key 'point'"});
+  expect_problem(
+      with_body("", R"("sensors": [{"name": "s", "type": "plane", "normal": [0, 0, 1]}])"),
+      "sensors[0]", {"missing required key 'point'"});
 }
 
 TEST(ProcessSceneReader, ForceSensorNamesBodiesOrFillCopies) {
@@ -567,10 +572,9 @@ TEST(ProcessSceneReader, ForceSensorNamesBodiesOrFillCopies) {
                  "sensors[0].bodies[1]", {"unknown body 'seed_5'"});
   expect_problem(with_body("", R"("sensors": [{"name": "s", "type": "force", "bodies": ["b2"]}])"),
                  "sensors[0].bodies[0]", {"unknown body 'b2'"});
-  expect_problem(
-      R"({"bodies": [{"name": "drum", "position": [0, 0, 0], "shape": )" + kBox +
-          R"(}], "sensors": [{"name": "s", "type": "force", "bodies": ["drun"]}]})",
-      "sensors[0].bodies[0]", {"unknown body 'drun'", "did you mean 'drum'"});
+  expect_problem(R"({"bodies": [{"name": "drum", "position": [0, 0, 0], "shape": )" + kBox +
+                     R"(}], "sensors": [{"name": "s", "type": "force", "bodies": ["drun"]}]})",
+                 "sensors[0].bodies[0]", {"unknown body 'drun'", "did you mean 'drum'"});
   expect_problem(with_body("", R"("sensors": [{"name": "s", "type": "force", "bodies": []}])"),
                  "sensors[0].bodies", {"must be a non-empty list of body names"});
 }
@@ -584,8 +588,8 @@ TEST(ProcessSceneReader, SensorKeysOfAnotherType) {
   expect_problem(with_body("", R"("sensors": [{"name": "s", "type": "plane", "point": [0, 0, 0], )"
                                R"("normal": [0, 0, 1], "bodies": ["a"]}])"),
                  "sensors[0]", {"key 'bodies' does not apply to a plane sensor", "'point'"});
-  expect_problem(with_body("", R"("sensors": [{"name": "s", "type": "plain"}])"),
-                 "sensors[0].type", {"must be one of", "did you mean \"plane\""});
+  expect_problem(with_body("", R"("sensors": [{"name": "s", "type": "plain"}])"), "sensors[0].type",
+                 {"must be one of", "did you mean \"plane\""});
 }
 
 }  // namespace

@@ -30,8 +30,8 @@ using json::Reader;
 
 const KeyList kMaterialKeys = {"friction", "restitution", "rolling_resistance"};
 const KeyList kPairKeys = {"materials", "friction", "restitution", "rolling_resistance"};
-const KeyList kMotionKeys = {"velocity", "angular_velocity", "center", "start", "end",
-                             "oscillation"};
+const KeyList kMotionKeys = {"velocity", "angular_velocity", "center", "start",
+                             "end",      "oscillation"};
 const KeyList kOscillationKeys = {"amplitude", "frequency"};
 const KeyList kScaleKeys = {"min", "max"};
 const KeyList kRegionKeys = {"min", "max"};
@@ -230,8 +230,7 @@ void ProcessReader::read_pairs(const Json& j, const std::string& path,
   }
 }
 
-void ProcessReader::read_material(const Json& obj, const std::string& path,
-                                  std::string* material) {
+void ProcessReader::read_material(const Json& obj, const std::string& path, std::string* material) {
   const Json* m = Reader::get(obj, "material");
   if (!m) return;
   const std::string mpath = child(path, "material");
@@ -289,8 +288,8 @@ bool ProcessReader::read_scale(const Json& j, const std::string& path, ScaleDef*
   const bool max_ok = r_.read_number(j, path, "max", &s.max, Bound::positive, true);
   if (!min_ok || !max_ok) return false;
   if (!(s.max >= s.min)) {
-    r_.fail(child(path, "max"), "must be at least min (" + format_number(s.min) + "), got " +
-                                    format_number(s.max));
+    r_.fail(child(path, "max"),
+            "must be at least min (" + format_number(s.min) + "), got " + format_number(s.max));
     return false;
   }
   *scale = s;
@@ -460,8 +459,9 @@ void ProcessReader::check_sensor_bodies(const SceneDef& scene) {
     if (auto guess = closest(name, names)) {
       reason += " (did you mean '" + std::string(*guess) + "'?)";
     } else {
-      reason += " (a force sensor names bodies of 'bodies' or copies made by 'fill', NAME_0 to "
-                "NAME_<count-1>)";
+      reason +=
+          " (a force sensor names bodies of 'bodies' or copies made by 'fill', NAME_0 to "
+          "NAME_<count-1>)";
     }
     r_.fail(path, reason);
   }

@@ -27,8 +27,8 @@ bool read_name(json::Reader& r, const json::Json& j, const std::string& path, st
 
 // An axis-aligned box {min, max} with min < max in every component, at `path`; `allowed` its
 // keys (a container also takes `material`). Returns whether both corners were valid.
-bool read_box(json::Reader& r, const json::Json& j, const std::string& path, Vec3* min,
-              Vec3* max, const json::KeyList& allowed);
+bool read_box(json::Reader& r, const json::Json& j, const std::string& path, Vec3* min, Vec3* max,
+              const json::KeyList& allowed);
 
 // A plane's normal, already read at `path`: scaled to unit length unless already of unit length
 // to rounding (kept bit for bit, so scene.json reads back to the same scene). False and a

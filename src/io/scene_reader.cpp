@@ -92,10 +92,11 @@ Mat3 rotation_z_cs(Real c, Real s) {
 const KeyList kSceneKeys = {"gravity",   "time_step", "duration", "integrator", "contact",
                             "container", "walls",     "bodies",   "fill",       "output",
                             "materials", "inlets",    "outlets",  "sensors"};
-const KeyList kContactKeys = {"model",   "friction", "restitution", "stiffness",
-                              "damping", "normals",  "points",      "law",
-                              "tangential_stiffness", "tolerance", "max_sweeps",
-                              "sweep_order", "margin", "solver", "pairs"};
+const KeyList kContactKeys = {"model",     "friction",   "restitution",
+                              "stiffness", "damping",    "normals",
+                              "points",    "law",        "tangential_stiffness",
+                              "tolerance", "max_sweeps", "sweep_order",
+                              "margin",    "solver",     "pairs"};
 const KeyList kContainerKeys = {"min", "max", "material"};
 const KeyList kRegionKeys = {"min", "max"};
 const KeyList kWallKeys = {"point", "normal", "material", "removed_at"};
@@ -105,10 +106,9 @@ const KeyList kBodyKeys = {"name",          "shape",      "density",  "position"
                            "fixed",         "material",   "motion",   "removed_at"};
 const KeyList kPoseKeys = {"position", "euler_zxz_deg", "quaternion"};
 const KeyList kFillKeys = {"name", "count", "region", "seed", "body"};
-const KeyList kFillBodyKeys = {"shape",            "density", "velocity",
-                               "angular_velocity", "fixed",   "material", "scale"};
-const KeyList kInletKeys = {"name", "region", "rate",     "count",
-                            "start", "seed",  "velocity", "body"};
+const KeyList kFillBodyKeys = {"shape", "density",  "velocity", "angular_velocity",
+                               "fixed", "material", "scale"};
+const KeyList kInletKeys = {"name", "region", "rate", "count", "start", "seed", "velocity", "body"};
 const KeyList kInletBodyKeys = {"shape", "density", "material", "scale", "angular_velocity"};
 // A fill larger than this is a typo, and would take minutes to place.
 constexpr int kMaxFillCount = 10'000'000;
@@ -334,10 +334,9 @@ class SceneReader {
       r_.check_keys(j[i], wpath, kWallKeys);
       WallDef wall;
       const bool point_ok = r_.read_vec3(j[i], wpath, "point", &wall.point, Bound::any, true);
-      const bool normal_ok =
-          r_.read_vec3(j[i], wpath, "normal", &wall.normal, Bound::any, true) &&
-          scene_io::unit_normal(r_, child(wpath, "normal"), &wall.normal,
-                                "it says which side bodies are on");
+      const bool normal_ok = r_.read_vec3(j[i], wpath, "normal", &wall.normal, Bound::any, true) &&
+                             scene_io::unit_normal(r_, child(wpath, "normal"), &wall.normal,
+                                                   "it says which side bodies are on");
       p_.read_material(j[i], wpath, &wall.material);
       p_.read_removed_at(j[i], wpath, &wall.removed_at);
       if (point_ok && normal_ok) walls->push_back(wall);
@@ -434,8 +433,8 @@ class SceneReader {
       }
       r_.read_int(j[i], fpath, "count", &fill.count, 1, kMaxFillCount, true);
       if (const Json* region = r_.need(j[i], fpath, "region"))
-        scene_io::read_box(r_, *region, child(fpath, "region"), &fill.region_min,
-                           &fill.region_max, kRegionKeys);
+        scene_io::read_box(r_, *region, child(fpath, "region"), &fill.region_min, &fill.region_max,
+                           kRegionKeys);
       int seed = 1;
       if (r_.read_int(j[i], fpath, "seed", &seed, 0, std::numeric_limits<int>::max()))
         fill.seed = static_cast<std::uint64_t>(seed);
@@ -485,9 +484,10 @@ class SceneReader {
 
   void read_inlets(const Json& j, const std::string& path, SceneDef* scene) {
     if (!j.is_array()) {
-      r_.fail(path, "must be a list of inlets ({\"name\", \"region\", \"rate\", \"count\", "
-                    "\"body\"}), got " +
-                        describe(j));
+      r_.fail(path,
+              "must be a list of inlets ({\"name\", \"region\", \"rate\", \"count\", "
+              "\"body\"}), got " +
+                  describe(j));
       return;
     }
     for (std::size_t i = 0; i < j.size(); ++i) {
@@ -528,8 +528,7 @@ class SceneReader {
       if (key == "velocity")
         return "unknown key 'velocity' (the velocity of an inlet's copies goes on the inlet: "
                "set 'velocity' there)";
-      if (key == "fixed")
-        return "unknown key 'fixed' (an inlet's copies move freely)";
+      if (key == "fixed") return "unknown key 'fixed' (an inlet's copies move freely)";
       return template_key_reason(key, "inlet");
     });
     if (const Json* s = r_.need(j, path, "shape"))
@@ -548,8 +547,8 @@ class SceneReader {
         r_.fail(path, std::string("must lie inside the container, but along ") + kAxisNames[k] +
                           " it spans [" + format_number(region.min[k]) + ", " +
                           format_number(region.max[k]) + "] and the container [" +
-                          format_number(container.min[k]) + ", " +
-                          format_number(container.max[k]) + "]");
+                          format_number(container.min[k]) + ", " + format_number(container.max[k]) +
+                          "]");
         return;
       }
     }
