@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "io/checkpoint.hpp"
 #include "io/scene_reader.hpp"
 #include "io/scene_writer.hpp"
 
@@ -306,6 +307,30 @@ TEST(ProcessSceneWriter, DefaultsWrittenReadBackToTheSameText) {
     ASSERT_TRUE(again.ok()) << all_problems(again);
     EXPECT_EQ(write_scene_text(again.scene), written);
   }
+}
+
+// A checkpoint's scene fingerprint is a hash of the written scene: it changes with every
+// process key, so a run is not resumed under another material, motion or inlet.
+TEST(ProcessSceneWriter, FingerprintCoversTheProcessKeys) {
+  const SceneDef base = read_good(kFull);
+  const std::uint64_t fingerprint = scene_fingerprint(base);
+  EXPECT_EQ(scene_fingerprint(read_good(kFull)), fingerprint);
+  auto changed = [&](auto change) {
+    SceneDef s = base;
+    change(s);
+    return scene_fingerprint(s);
+  };
+  EXPECT_NE(changed([](SceneDef& s) { s.materials[0].rolling_resistance = 0.5; }), fingerprint);
+  EXPECT_NE(changed([](SceneDef& s) { s.contact.pairs[0].friction.reset(); }), fingerprint);
+  EXPECT_NE(changed([](SceneDef& s) { s.bodies[0].material = "grain"; }), fingerprint);
+  EXPECT_NE(changed([](SceneDef& s) { s.bodies[0].motion->end = 2; }), fingerprint);
+  EXPECT_NE(changed([](SceneDef& s) { s.bodies[1].removed_at = 0.4; }), fingerprint);
+  EXPECT_NE(changed([](SceneDef& s) { s.walls[0].removed_at.reset(); }), fingerprint);
+  EXPECT_NE(changed([](SceneDef& s) { s.container->material = ""; }), fingerprint);
+  EXPECT_NE(changed([](SceneDef& s) { s.fill[0].body.scale->max = 1.5; }), fingerprint);
+  EXPECT_NE(changed([](SceneDef& s) { s.inlets[0].rate = 10; }), fingerprint);
+  EXPECT_NE(changed([](SceneDef& s) { s.outlets[0].region.min.x() = -2; }), fingerprint);
+  EXPECT_NE(changed([](SceneDef& s) { s.sensors[1].bodies.pop_back(); }), fingerprint);
 }
 
 // ---- Materials and pairs -----------------------------------------------------------------
