@@ -23,6 +23,7 @@
 #include <utility>
 
 #include "io/json_reader.hpp"
+#include "io/process_reader.hpp"
 
 namespace tem {
 namespace {
@@ -89,20 +90,26 @@ Mat3 rotation_z_cs(Real c, Real s) {
 // ---- Scene sections ----------------------------------------------------------------------
 
 const KeyList kSceneKeys = {"gravity",   "time_step", "duration", "integrator", "contact",
-                            "container", "walls",     "bodies",   "fill",       "output"};
-const KeyList kContactKeys = {"model",   "friction", "restitution", "stiffness",
-                              "damping", "normals",  "points",      "law",
-                              "tangential_stiffness", "tolerance", "max_sweeps",
-                              "sweep_order", "margin", "solver"};
-const KeyList kContainerKeys = {"min", "max"};
-const KeyList kWallKeys = {"point", "normal"};
+                            "container", "walls",     "bodies",   "fill",       "output",
+                            "materials", "inlets",    "outlets",  "sensors"};
+const KeyList kContactKeys = {"model",     "friction",   "restitution",
+                              "stiffness", "damping",    "normals",
+                              "points",    "law",        "tangential_stiffness",
+                              "tolerance", "max_sweeps", "sweep_order",
+                              "margin",    "solver",     "pairs"};
+const KeyList kContainerKeys = {"min", "max", "material"};
+const KeyList kRegionKeys = {"min", "max"};
+const KeyList kWallKeys = {"point", "normal", "material", "removed_at"};
 const KeyList kOutputKeys = {"interval", "checkpoint_interval", "paraview"};
 const KeyList kBodyKeys = {"name",          "shape",      "density",  "position",
                            "euler_zxz_deg", "quaternion", "velocity", "angular_velocity",
-                           "fixed"};
+                           "fixed",         "material",   "motion",   "removed_at"};
 const KeyList kPoseKeys = {"position", "euler_zxz_deg", "quaternion"};
 const KeyList kFillKeys = {"name", "count", "region", "seed", "body"};
-const KeyList kFillBodyKeys = {"shape", "density", "velocity", "angular_velocity", "fixed"};
+const KeyList kFillBodyKeys = {"shape", "density",  "velocity", "angular_velocity",
+                               "fixed", "material", "scale"};
+const KeyList kInletKeys = {"name", "region", "rate", "count", "start", "seed", "velocity", "body"};
+const KeyList kInletBodyKeys = {"shape", "density", "material", "scale", "angular_velocity"};
 // A fill larger than this is a typo, and would take minutes to place.
 constexpr int kMaxFillCount = 10'000'000;
 
@@ -157,6 +164,9 @@ class SceneReader {
         scene->integrator = *kind;
       }
     }
+    // Materials first: bodies, walls and pairs name them (checked at the end).
+    if (const Json* j = Reader::get(root, "materials"))
+      p_.read_materials(*j, "materials", &scene->materials);
     if (const Json* j = Reader::get(root, "contact")) read_contact(*j, "contact", &scene->contact);
     if (const Json* j = Reader::get(root, "container")) {
       ContainerDef container;
@@ -168,10 +178,18 @@ class SceneReader {
     // Bodies may come from fills alone, but a scene needs some: an empty `fill` list makes
     // none, so `bodies` is then required (the fuzzer found such a scene accepted, and written
     // back as one that is not).
-    const bool fills_bodies = fill && fill->is_array() && !fill->empty();
+    const Json* inlets = Reader::get(root, "inlets");
+    if (inlets) read_inlets(*inlets, "inlets", scene);
+    const bool fills_bodies = (fill && fill->is_array() && !fill->empty()) ||
+                              (inlets && inlets->is_array() && !inlets->empty());
     if (const Json* j = fills_bodies ? Reader::get(root, "bodies") : r_.need(root, "", "bodies"))
       read_bodies(*j, "bodies", &scene->bodies, /*may_be_empty=*/fills_bodies);
     if (const Json* j = Reader::get(root, "output")) read_output(*j, "output", &scene->output);
+    if (const Json* j = Reader::get(root, "outlets"))
+      p_.read_outlets(*j, "outlets", &scene->outlets);
+    if (const Json* j = Reader::get(root, "sensors"))
+      p_.read_sensors(*j, "sensors", &scene->sensors);
+    p_.check_references(*scene);
   }
 
  private:
@@ -279,6 +297,8 @@ class SceneReader {
         contact->solver = *solver;
       }
     }
+    if (const Json* p = Reader::get(j, "pairs"))
+      p_.read_pairs(*p, child(path, "pairs"), &contact->pairs);
     // Cundall and Strack's ratio when not given.
     contact->tangential_stiffness = 2.0 / 7.0 * contact->stiffness;
     r_.read_number(j, path, "tangential_stiffness", &contact->tangential_stiffness,
@@ -296,22 +316,10 @@ class SceneReader {
   }
 
   bool read_container(const Json& j, const std::string& path, ContainerDef* container) {
-    if (!r_.object(j, path)) return false;
-    r_.check_keys(j, path, kContainerKeys);
-    const bool min_ok = r_.read_vec3(j, path, "min", &container->min, Bound::any, true);
-    const bool max_ok = r_.read_vec3(j, path, "max", &container->max, Bound::any, true);
-    if (!min_ok || !max_ok) return false;
-    static constexpr const char* kAxisNames[] = {"x", "y", "z"};
-    for (int k = 0; k < 3; ++k) {
-      if (!(container->min[k] < container->max[k])) {
-        r_.fail(child(path, "max"), std::string("must exceed min in every component, but ") +
-                                        kAxisNames[k] + " has max " +
-                                        format_number(container->max[k]) + " and min " +
-                                        format_number(container->min[k]));
-        return false;
-      }
-    }
-    return true;
+    const bool ok =
+        scene_io::read_box(r_, j, path, &container->min, &container->max, kContainerKeys);
+    if (j.is_object()) p_.read_material(j, path, &container->material);
+    return ok;
   }
 
   void read_walls(const Json& j, const std::string& path, std::vector<WallDef>* walls) {
@@ -326,20 +334,11 @@ class SceneReader {
       r_.check_keys(j[i], wpath, kWallKeys);
       WallDef wall;
       const bool point_ok = r_.read_vec3(j[i], wpath, "point", &wall.point, Bound::any, true);
-      bool normal_ok = r_.read_vec3(j[i], wpath, "normal", &wall.normal, Bound::any, true);
-      if (normal_ok) {
-        const Real length = wall.normal.stableNorm();
-        if (!(length > 0) || !std::isfinite(length)) {
-          r_.fail(child(wpath, "normal"), "must not be zero: it says which side bodies are on");
-          normal_ok = false;
-        } else {
-          // A normal already of unit length (to rounding) is kept as written: dividing it by
-          // its rounded length again could move it by an ulp, and scene.json must read back to
-          // the very same scene (fuzz-found).
-          if (std::abs(length - 1) > 4 * std::numeric_limits<Real>::epsilon())
-            wall.normal /= length;
-        }
-      }
+      const bool normal_ok = r_.read_vec3(j[i], wpath, "normal", &wall.normal, Bound::any, true) &&
+                             scene_io::unit_normal(r_, child(wpath, "normal"), &wall.normal,
+                                                   "it says which side bodies are on");
+      p_.read_material(j[i], wpath, &wall.material);
+      p_.read_removed_at(j[i], wpath, &wall.removed_at);
       if (point_ok && normal_ok) walls->push_back(wall);
     }
   }
@@ -369,6 +368,7 @@ class SceneReader {
       body.path = element(path, i);
       body.shape.path = child(body.path, "shape");
       const bool name_ok = read_body(j[i], &body);
+      if (!name_ok) p_.body_names_incomplete();
       if (name_ok) {
         const auto [it, fresh] = first_index.emplace(body.name, i);
         if (!fresh) {
@@ -385,7 +385,12 @@ class SceneReader {
   bool read_body(const Json& j, BodyDef* body) {
     const std::string& path = body->path;
     if (!r_.object(j, path)) return false;
-    r_.check_keys(j, path, kBodyKeys);
+    r_.check_keys(j, path, kBodyKeys, [&](std::string_view key) -> std::string {
+      if (key == "scale")
+        return "unknown key 'scale' (a size factor drawn per copy belongs to the body of a fill "
+               "or an inlet; a mesh shape takes its own 'scale')";
+      return "";
+    });
     bool name_ok = false;
     if (const Json* n = r_.need(j, path, "name")) name_ok = read_name(*n, path, &body->name);
     if (const Json* s = r_.need(j, path, "shape")) {
@@ -396,7 +401,18 @@ class SceneReader {
     read_orientation(j, path, &body->rotation, &body->orientation_given);
     r_.read_vec3(j, path, "velocity", &body->velocity);
     r_.read_vec3(j, path, "angular_velocity", &body->angular_velocity);
-    r_.read_bool(j, path, "fixed", &body->fixed);
+    const bool fixed_ok = r_.read_bool(j, path, "fixed", &body->fixed);
+    p_.read_material(j, path, &body->material);
+    if (const Json* m = Reader::get(j, "motion")) {
+      MotionDef motion;
+      p_.read_motion(*m, child(path, "motion"), &motion);
+      body->motion = motion;
+      if (fixed_ok && body->fixed)
+        r_.fail(child(path, "fixed"),
+                "a body with a prescribed motion is moved by it; drop 'fixed' (a body without "
+                "'motion' that is fixed stands still)");
+    }
+    p_.read_removed_at(j, path, &body->removed_at);
     return name_ok;
   }
 
@@ -412,15 +428,13 @@ class SceneReader {
       const std::string& fpath = fill.path;
       if (!r_.object(j[i], fpath)) continue;
       r_.check_keys(j[i], fpath, kFillKeys);
-      if (const Json* n = r_.need(j[i], fpath, "name")) read_name(*n, fpath, &fill.name);
-      r_.read_int(j[i], fpath, "count", &fill.count, 1, kMaxFillCount, true);
-      if (const Json* region = r_.need(j[i], fpath, "region")) {
-        ContainerDef box;
-        if (read_container(*region, child(fpath, "region"), &box)) {
-          fill.region_min = box.min;
-          fill.region_max = box.max;
-        }
+      if (const Json* n = r_.need(j[i], fpath, "name")) {
+        if (!read_name(*n, fpath, &fill.name)) p_.body_names_incomplete();
       }
+      r_.read_int(j[i], fpath, "count", &fill.count, 1, kMaxFillCount, true);
+      if (const Json* region = r_.need(j[i], fpath, "region"))
+        scene_io::read_box(r_, *region, child(fpath, "region"), &fill.region_min, &fill.region_max,
+                           kRegionKeys);
       int seed = 1;
       if (r_.read_int(j[i], fpath, "seed", &seed, 0, std::numeric_limits<int>::max()))
         fill.seed = static_cast<std::uint64_t>(seed);
@@ -440,7 +454,7 @@ class SceneReader {
         return "unknown key '" + std::string(key) +
                "' (a fill names and places its bodies itself: set 'name' and 'region' on the "
                "fill)";
-      return "";
+      return template_key_reason(key, "fill");
     });
     if (const Json* s = r_.need(j, path, "shape"))
       read_shape(*s, body->shape.path, &body->shape, /*is_part=*/false, 0);
@@ -448,33 +462,101 @@ class SceneReader {
     r_.read_vec3(j, path, "velocity", &body->velocity);
     r_.read_vec3(j, path, "angular_velocity", &body->angular_velocity);
     r_.read_bool(j, path, "fixed", &body->fixed);
+    read_template_material_and_scale(j, body);
+  }
+
+  // Keys of a plain body that a template (of a fill or an inlet) does not take.
+  static std::string template_key_reason(std::string_view key, const std::string& maker) {
+    if (key == "motion" || key == "removed_at")
+      return "unknown key '" + std::string(key) + "' (the copies made by a " + maker +
+             " move freely; prescribed motion and removal belong to bodies of 'bodies', and an "
+             "outlet removes copies)";
+    return "";
+  }
+
+  void read_template_material_and_scale(const Json& j, BodyDef* body) {
+    p_.read_material(j, body->path, &body->material);
+    if (const Json* s = Reader::get(j, "scale")) {
+      ScaleDef scale;
+      if (p_.read_scale(*s, child(body->path, "scale"), &scale)) body->scale = scale;
+    }
+  }
+
+  void read_inlets(const Json& j, const std::string& path, SceneDef* scene) {
+    if (!j.is_array()) {
+      r_.fail(path,
+              "must be a list of inlets ({\"name\", \"region\", \"rate\", \"count\", "
+              "\"body\"}), got " +
+                  describe(j));
+      return;
+    }
+    for (std::size_t i = 0; i < j.size(); ++i) {
+      InletDef inlet;
+      inlet.path = element(path, i);
+      const std::string& ipath = inlet.path;
+      if (!r_.object(j[i], ipath)) continue;
+      r_.check_keys(j[i], ipath, kInletKeys);
+      if (const Json* n = r_.need(j[i], ipath, "name")) read_name(*n, ipath, &inlet.name);
+      if (const Json* region = r_.need(j[i], ipath, "region")) {
+        const std::string rpath = child(ipath, "region");
+        if (p_.read_region(*region, rpath, &inlet.region) && scene->container)
+          check_inside_container(inlet.region, *scene->container, rpath);
+      }
+      r_.read_number(j[i], ipath, "rate", &inlet.rate, Bound::positive, true);
+      r_.read_int(j[i], ipath, "count", &inlet.count, 1, kMaxFillCount, true);
+      r_.read_number(j[i], ipath, "start", &inlet.start, Bound::non_negative);
+      int seed = 1;
+      if (r_.read_int(j[i], ipath, "seed", &seed, 0, std::numeric_limits<int>::max()))
+        inlet.seed = static_cast<std::uint64_t>(seed);
+      r_.read_vec3(j[i], ipath, "velocity", &inlet.velocity);
+      inlet.body.path = child(ipath, "body");
+      inlet.body.shape.path = child(inlet.body.path, "shape");
+      if (const Json* b = r_.need(j[i], ipath, "body")) read_inlet_body(*b, &inlet.body);
+      scene->inlets.push_back(std::move(inlet));
+    }
+  }
+
+  // The template of an inlet: a body without name, pose or velocity (the inlet gives those).
+  void read_inlet_body(const Json& j, BodyDef* body) {
+    const std::string& path = body->path;
+    if (!r_.object(j, path)) return;
+    r_.check_keys(j, path, kInletBodyKeys, [&](std::string_view key) -> std::string {
+      if (key == "name" || contains(kPoseKeys, key))
+        return "unknown key '" + std::string(key) +
+               "' (an inlet names and places its bodies itself: set 'name' and 'region' on the "
+               "inlet)";
+      if (key == "velocity")
+        return "unknown key 'velocity' (the velocity of an inlet's copies goes on the inlet: "
+               "set 'velocity' there)";
+      if (key == "fixed") return "unknown key 'fixed' (an inlet's copies move freely)";
+      return template_key_reason(key, "inlet");
+    });
+    if (const Json* s = r_.need(j, path, "shape"))
+      read_shape(*s, body->shape.path, &body->shape, /*is_part=*/false, 0);
+    r_.read_number(j, path, "density", &body->density, Bound::positive);
+    r_.read_vec3(j, path, "angular_velocity", &body->angular_velocity);
+    read_template_material_and_scale(j, body);
+  }
+
+  // An inlet places its copies inside its region; with a container, that must be inside too.
+  void check_inside_container(const RegionDef& region, const ContainerDef& container,
+                              const std::string& path) {
+    static constexpr const char* kAxisNames[] = {"x", "y", "z"};
+    for (int k = 0; k < 3; ++k) {
+      if (region.min[k] < container.min[k] || region.max[k] > container.max[k]) {
+        r_.fail(path, std::string("must lie inside the container, but along ") + kAxisNames[k] +
+                          " it spans [" + format_number(region.min[k]) + ", " +
+                          format_number(region.max[k]) + "] and the container [" +
+                          format_number(container.min[k]) + ", " + format_number(container.max[k]) +
+                          "]");
+        return;
+      }
+    }
   }
 
   // Names go into CSV columns and contact rows, where "wall" already names the walls.
   bool read_name(const Json& j, const std::string& body_path, std::string* name) {
-    const std::string path = child(body_path, "name");
-    const auto s = r_.string(j, path);
-    if (!s) return false;
-    if (s->empty()) {
-      r_.fail(path, "must not be empty");
-      return false;
-    }
-    const bool bad_char = std::any_of(s->begin(), s->end(), [](char c) {
-      return c == ',' || c == '"' || std::iscntrl(static_cast<unsigned char>(c));
-    });
-    if (bad_char) {
-      r_.fail(path,
-              "must not contain commas, quotes or control characters (it becomes a CSV "
-              "field), got " +
-                  in_quotes(*s));
-      return false;
-    }
-    if (*s == "wall") {
-      r_.fail(path, "\"wall\" is reserved: contacts.csv uses it for walls");
-      return false;
-    }
-    *name = *s;
-    return true;
+    return scene_io::read_name(r_, j, child(body_path, "name"), name, /*wall_reserved=*/true);
   }
 
   void read_shape(const Json& j, const std::string& path, ShapeDef* shape, bool is_part,
@@ -669,6 +751,7 @@ class SceneReader {
   }
 
   Reader r_;
+  scene_io::ProcessReader p_{r_};
 };
 
 }  // namespace

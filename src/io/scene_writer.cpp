@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <optional>
+#include <string>
 
 #include "io/scene_reader.hpp"
 
@@ -158,6 +160,88 @@ Json shape_to_json(const ShapeDef& shape, bool is_part) {
   return j;
 }
 
+Json region_to_json(const RegionDef& region) {
+  return Json{{"min", vec3(region.min)}, {"max", vec3(region.max)}};
+}
+
+// Granular-process keys of a body or a template: written only when given, so that scenes
+// without them write as before; inside each, every default is written.
+void write_material(const std::string& material, Json* j) {
+  if (!material.empty()) (*j)["material"] = material;
+}
+
+void write_scale(const std::optional<ScaleDef>& scale, Json* j) {
+  if (scale) (*j)["scale"] = Json{{"min", scale->min}, {"max", scale->max}};
+}
+
+void write_removed_at(const std::optional<Real>& removed_at, Json* j) {
+  if (removed_at) (*j)["removed_at"] = *removed_at;
+}
+
+// An infinite `end` (the default: no end) is left out; JSON has no infinity.
+Json motion_to_json(const MotionDef& motion) {
+  Json j;
+  j["velocity"] = vec3(motion.velocity);
+  j["angular_velocity"] = vec3(motion.angular_velocity);
+  if (motion.center) j["center"] = vec3(*motion.center);
+  j["start"] = motion.start;
+  if (std::isfinite(motion.end)) j["end"] = motion.end;
+  if (motion.oscillation) {
+    j["oscillation"] = Json{{"amplitude", vec3(motion.oscillation->amplitude)},
+                            {"frequency", motion.oscillation->frequency}};
+  }
+  return j;
+}
+
+const char* sensor_type_name(SensorType type) {
+  switch (type) {
+    case SensorType::plane:
+      return "plane";
+    case SensorType::force:
+      return "force";
+    case SensorType::region:
+      return "region";
+  }
+  return "plane";
+}
+
+Json sensor_to_json(const SensorDef& sensor) {
+  Json j;
+  j["name"] = sensor.name;
+  j["type"] = sensor_type_name(sensor.type);
+  switch (sensor.type) {
+    case SensorType::plane:
+      j["point"] = vec3(sensor.point);
+      j["normal"] = vec3(sensor.normal);
+      break;
+    case SensorType::force:
+      j["bodies"] = sensor.bodies;
+      break;
+    case SensorType::region:
+      j["region"] = region_to_json(sensor.region);
+      break;
+  }
+  return j;
+}
+
+Json inlet_to_json(const InletDef& inlet) {
+  Json j;
+  j["name"] = inlet.name;
+  j["region"] = region_to_json(inlet.region);
+  j["rate"] = inlet.rate;
+  j["count"] = inlet.count;
+  j["start"] = inlet.start;
+  j["seed"] = inlet.seed;
+  j["velocity"] = vec3(inlet.velocity);
+  Json body = Json{{"shape", shape_to_json(inlet.body.shape, false)},
+                   {"density", inlet.body.density},
+                   {"angular_velocity", vec3(inlet.body.angular_velocity)}};
+  write_material(inlet.body.material, &body);
+  write_scale(inlet.body.scale, &body);
+  j["body"] = std::move(body);
+  return j;
+}
+
 Json body_to_json(const BodyDef& body) {
   Json j;
   j["name"] = body.name;
@@ -168,6 +252,9 @@ Json body_to_json(const BodyDef& body) {
   j["velocity"] = vec3(body.velocity);
   j["angular_velocity"] = vec3(body.angular_velocity);
   j["fixed"] = body.fixed;
+  write_material(body.material, &j);
+  if (body.motion) j["motion"] = motion_to_json(*body.motion);
+  write_removed_at(body.removed_at, &j);
   return j;
 }
 
@@ -177,11 +264,14 @@ Json fill_to_json(const FillDef& fill) {
   j["count"] = fill.count;
   j["region"] = Json{{"min", vec3(fill.region_min)}, {"max", vec3(fill.region_max)}};
   j["seed"] = fill.seed;
-  j["body"] = Json{{"shape", shape_to_json(fill.body.shape, false)},
+  Json body = Json{{"shape", shape_to_json(fill.body.shape, false)},
                    {"density", fill.body.density},
                    {"velocity", vec3(fill.body.velocity)},
                    {"angular_velocity", vec3(fill.body.angular_velocity)},
                    {"fixed", fill.body.fixed}};
+  write_material(fill.body.material, &body);
+  write_scale(fill.body.scale, &body);
+  j["body"] = std::move(body);
   return j;
 }
 
@@ -213,6 +303,15 @@ std::string indented(const Json& j, int depth) {
 
 Json scene_to_json(const SceneDef& scene) {
   Json j;
+  if (!scene.materials.empty()) {
+    Json materials = Json::object();
+    for (const MaterialDef& m : scene.materials) {
+      materials[m.name] = Json{{"friction", m.friction},
+                               {"restitution", m.restitution},
+                               {"rolling_resistance", m.rolling_resistance}};
+    }
+    j["materials"] = std::move(materials);
+  }
   j["gravity"] = vec3(scene.gravity);
   j["time_step"] = scene.time_step;
   j["duration"] = scene.duration;
@@ -234,12 +333,27 @@ Json scene_to_json(const SceneDef& scene) {
     j["contact"]["margin"] = *scene.contact.margin;
   else
     j["contact"]["margin"] = "auto";
+  if (!scene.contact.pairs.empty()) {
+    Json pairs = Json::array();
+    for (const MaterialPairDef& p : scene.contact.pairs) {
+      Json pair = Json{{"materials", Json::array({p.first, p.second})}};
+      if (p.friction) pair["friction"] = *p.friction;
+      if (p.restitution) pair["restitution"] = *p.restitution;
+      if (p.rolling_resistance) pair["rolling_resistance"] = *p.rolling_resistance;
+      pairs.push_back(std::move(pair));
+    }
+    j["contact"]["pairs"] = std::move(pairs);
+  }
   if (scene.container) {
     j["container"] = Json{{"min", vec3(scene.container->min)}, {"max", vec3(scene.container->max)}};
+    write_material(scene.container->material, &j["container"]);
   }
   Json walls = Json::array();
   for (const WallDef& wall : scene.walls) {
-    walls.push_back(Json{{"point", vec3(wall.point)}, {"normal", vec3(wall.normal)}});
+    Json w = Json{{"point", vec3(wall.point)}, {"normal", vec3(wall.normal)}};
+    write_material(wall.material, &w);
+    write_removed_at(wall.removed_at, &w);
+    walls.push_back(std::move(w));
   }
   j["walls"] = std::move(walls);
   Json bodies = Json::array();
@@ -249,6 +363,22 @@ Json scene_to_json(const SceneDef& scene) {
     Json fills = Json::array();
     for (const FillDef& fill : scene.fill) fills.push_back(fill_to_json(fill));
     j["fill"] = std::move(fills);
+  }
+  if (!scene.inlets.empty()) {
+    Json inlets = Json::array();
+    for (const InletDef& inlet : scene.inlets) inlets.push_back(inlet_to_json(inlet));
+    j["inlets"] = std::move(inlets);
+  }
+  if (!scene.outlets.empty()) {
+    Json outlets = Json::array();
+    for (const OutletDef& outlet : scene.outlets)
+      outlets.push_back(Json{{"name", outlet.name}, {"region", region_to_json(outlet.region)}});
+    j["outlets"] = std::move(outlets);
+  }
+  if (!scene.sensors.empty()) {
+    Json sensors = Json::array();
+    for (const SensorDef& sensor : scene.sensors) sensors.push_back(sensor_to_json(sensor));
+    j["sensors"] = std::move(sensors);
   }
   j["output"] = Json{{"interval", scene.output.interval},
                      {"checkpoint_interval", scene.output.checkpoint_interval},
