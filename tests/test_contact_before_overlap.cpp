@@ -22,7 +22,7 @@ SceneDef falling_coin(Real height, Real speed, Real dt) {
   SceneDef scene;
   scene.gravity = Vec3(0, 0, -kG);
   scene.time_step = dt;
-  scene.walls.push_back({Vec3::Zero(), Vec3::UnitZ(), {}, {}});
+  scene.walls.push_back({Vec3::Zero(), Vec3::UnitZ()});
   BodyDef coin;
   coin.name = "coin";
   coin.shape.type = ShapeType::prism;

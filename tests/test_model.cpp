@@ -72,8 +72,8 @@ TEST(Model, DegeneratePointsNameThePointsPath) {
 
 TEST(Model, ContainerGivesSixInwardWalls) {
   SceneDef scene = scene_with(paper_ring(16, false));
-  scene.container = ContainerDef{Vec3(0, 0, 0), Vec3(1, 2, 3), {}};
-  scene.walls.push_back({Vec3(0, 0, 0.5), Vec3(0, 0, 2), {}, {}});
+  scene.container = ContainerDef{Vec3(0, 0, 0), Vec3(1, 2, 3)};
+  scene.walls.push_back({Vec3(0, 0, 0.5), Vec3(0, 0, 2)});
   const Model model = build_model(scene);
   ASSERT_EQ(model.walls.size(), 7u);
   const Vec3 inside(0.5, 1.0, 1.5);

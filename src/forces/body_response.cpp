@@ -32,6 +32,7 @@ void body_responses(const Model& model, const State& state, Real dt,
     if (body.fixed) return;  // does not move: no response, no velocity
     const BodyState& s = state.bodies[i];
     if (body.motion) {  // moves as told (process/motion.hpp): no response, its own velocity
+      out[i].driven = true;
       out[i].velocity = s.v;
       out[i].angular_velocity = s.g * s.omega;
       return;

@@ -22,6 +22,7 @@ namespace tem {
 
 struct BodyResponse {
   Real inverse_mass = 0;               // 0 for a fixed body
+  bool driven = false;                 // prescribed motion: no response, a velocity of its own
   Mat3 angular = Mat3::Zero();         // Q: angular impulse (world) -> pseudo angular velocity
   Vec3 velocity = Vec3::Zero();        // y, linear part, with no contact impulse: v + G dt
   Vec3 angular_velocity = Vec3::Zero();  // y, angular part, with no contact impulse

@@ -45,7 +45,7 @@ struct Side {
 Side side_of(std::vector<BodyResponse>& bodies, const std::vector<Vec3>& centres, int body,
              const Vec3& point) {
   Side s;
-  if (body >= 0 && bodies[body].inverse_mass > 0) {
+  if (body >= 0 && (bodies[body].inverse_mass > 0 || bodies[body].driven)) {
     s.body = &bodies[body];
     s.arm = point - centres[body];
   }

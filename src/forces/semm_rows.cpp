@@ -13,7 +13,11 @@ using Vec2 = Eigen::Matrix<Real, 2, 1>;
 
 // The slot of a body in the solver's velocity arrays: its own if it moves, else the still one.
 int slot_of(const std::vector<BodyResponse>& bodies, int body) {
-  return body >= 0 && bodies[body].inverse_mass > 0 ? body : static_cast<int>(bodies.size());
+  // Bodies that impulses move, and driven ones (prescribed motion), which keep their own
+  // velocity; walls and fixed bodies share the still slot.
+  return body >= 0 && (bodies[body].inverse_mass > 0 || bodies[body].driven)
+             ? body
+             : static_cast<int>(bodies.size());
 }
 
 // Builds patch k's rows (laid out at [first, first + its points)) and its friction row.
@@ -82,7 +86,9 @@ void build_patch(const std::vector<ContactPoint>& points, const std::vector<Real
 
 // Adds a linear impulse j (world) at a row's arm on slot `s`, turning it by `turn`.
 inline void push(Memory& m, int s, int still, const Vec3& j, const Vec3& turn) {
-  if (s == still) return;
+  // A driven body's velocity is not the impulses' to change (and, shared by the patches of one
+  // colour, must not be written by two threads).
+  if (s == still || m.inverse_mass[s] == 0) return;
   m.velocity[s] += m.inverse_mass[s] * j;
   m.angular_velocity[s] += turn;
 }

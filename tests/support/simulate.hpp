@@ -64,7 +64,7 @@ inline Model load_scene(const std::string& relative) {
 // z = lift, under the default settings.
 inline SceneDef box_on_floor(Real lift = 0) {
   SceneDef scene;
-  scene.walls.push_back({Vec3::Zero(), Vec3::UnitZ(), {}, {}});
+  scene.walls.push_back({Vec3::Zero(), Vec3::UnitZ()});
   BodyDef box;
   box.name = "box";
   box.shape.type = ShapeType::box;
