@@ -13,7 +13,8 @@ namespace tem {
 namespace {
 
 constexpr char kMagic[8] = {'T', 'E', 'M', 'C', 'K', 'P', 'T', '\n'};
-constexpr std::uint32_t kVersion = 1;
+// 2: PatchFriction records carry the rolling impulses (roll1, roll2).
+constexpr std::uint32_t kVersion = 2;
 
 std::uint64_t fnv1a(const char* data, std::size_t size) {
   std::uint64_t h = 14695981039346656037ull;
@@ -100,7 +101,8 @@ void fields(B& b, F&& f) {
     f(b.normal);
   } else if constexpr (std::is_same_v<std::remove_const_t<B>, PatchFriction>) {
     f(b.first), f(b.last), f(b.body_a), f(b.body_b), f(b.wall), f(b.centre), f(b.normal),
-        f(b.tangent1), f(b.tangent2), f(b.start_slip), f(b.t1), f(b.t2), f(b.twist);
+        f(b.tangent1), f(b.tangent2), f(b.start_slip), f(b.t1), f(b.t2), f(b.twist), f(b.roll1),
+        f(b.roll2);
   } else {
     static_assert(std::is_same_v<std::remove_const_t<B>, PenaltySpring>);
     f(b.body_a), f(b.body_b), f(b.wall), f(b.point), f(b.stretch);
