@@ -152,7 +152,8 @@ void compute_contact_forces(const Model& model, const State& state,
       const PatchFriction& p = f.friction[k];
       const Vec3 on_b = (p.t1 * p.tangent1 + p.t2 * p.tangent2) / dt;
       Vec3 moment = p.twist / dt * p.normal;
-      if (p.roll1 != 0 || p.roll2 != 0) moment += (p.roll1 * p.tangent1 + p.roll2 * p.tangent2) / dt;
+      if (p.roll1 != 0 || p.roll2 != 0)  // rolling resistance
+        moment += (p.roll1 * p.tangent1 + p.roll2 * p.tangent2) / dt;
       push(p.body_a, p.body_b, p.centre, on_b, moment);
       f.patch_forces[k].tangential = on_b.norm();
     }

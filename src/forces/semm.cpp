@@ -292,7 +292,8 @@ SolverReport sweep(std::vector<NormalRow>& rows, std::vector<FrictionRow>& frict
   SolverReport report;
   // Whether any patch has friction or rolling resistance (their pass is skipped otherwise).
   bool any_friction = false;
-  for (const FrictionRow& f : friction) any_friction = any_friction || f.mu > 0 || f.rolling_limit > 0;
+  for (const FrictionRow& f : friction)
+    any_friction = any_friction || f.mu > 0 || f.rolling_limit > 0;
   std::vector<SweepSize> sizes(static_cast<size_t>(max_threads()));
   for (report.sweeps = 1; report.sweeps <= settings.max_sweeps; ++report.sweeps) {
     std::fill(sizes.begin(), sizes.end(), SweepSize{});

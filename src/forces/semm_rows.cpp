@@ -390,7 +390,8 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
     build_patch(points, targets, bodies, centres, p, impulses, f.first, m, f);
     f.mu = friction_of(settings, p);
     if (!(f.mu > 0)) f.t1 = f.t2 = f.twist = 0;
-    if (f.rolling >= 0) build_rolling(bodies, p, rolling_limit_of(settings, p), f, m.rolling[f.rolling]);
+    if (f.rolling >= 0)
+      build_rolling(bodies, p, rolling_limit_of(settings, p), f, m.rolling[f.rolling]);
     m.patch_of_friction[j] = colouring.order[j];
   });
 
