@@ -82,6 +82,8 @@ void Packer::put(const PatchFriction& p) {
   put(p.t1);
   put(p.t2);
   put(p.twist);
+  put(p.roll1);
+  put(p.roll2);
 }
 
 PatchFriction Unpacker::friction() {
@@ -99,6 +101,8 @@ PatchFriction Unpacker::friction() {
   p.t1 = number();
   p.t2 = number();
   p.twist = number();
+  p.roll1 = number();
+  p.roll2 = number();
   return p;
 }
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "forces/materials.hpp"
 #include "forces/warm_start.hpp"
 
 namespace tem {
@@ -15,7 +16,8 @@ Vec3 start_spin(const Model& model, const State& state, int body) {
 
 // What restitution answers and what keeps the impulses from adding energy (semm.cpp): the
 // normal relative velocity (B minus A) at each point, and each patch's slip and spin at its
-// centre, with the velocities at the start of the step.
+// centre, with the velocities at the start of the step; and each patch's coefficients from its
+// materials (materials.hpp).
 void start_velocities(const Model& model, const State& state,
                       const std::vector<ContactPatch>& patches, ContactForces& f) {
   f.approach.resize(f.points.size());
@@ -47,6 +49,15 @@ void start_velocities(const Model& model, const State& state,
                     material_point_velocity(model, state, c.body_a, p.centre);
     const Vec3 dw = start_spin(model, state, c.body_b) - start_spin(model, state, c.body_a);
     p.start_slip = Vec3(p.tangent1.dot(dv), p.tangent2.dot(dv), p.normal.dot(dw));
+    const PairCoefficients& k = contact_coefficients(model, c.body_a, c.body_b, c.wall);
+    p.friction = k.friction;
+    p.restitution = k.restitution;
+    p.rolling_resistance = k.rolling_resistance;
+    if (k.rolling_resistance > 0) {
+      p.rolling_radius = rolling_radius(model, state, c.body_a, c.body_b, p.centre);
+      p.start_roll1 = p.tangent1.dot(dw);
+      p.start_roll2 = p.tangent2.dot(dw);
+    }
   }
 }
 
@@ -105,6 +116,7 @@ void compute_contact_forces(const Model& model, const State& state,
     SolverSettings settings;
     settings.friction = scene.contact.friction;
     settings.restitution = scene.contact.restitution;
+    settings.per_patch = true;  // each patch's coefficients from its materials
     settings.tolerance = scene.contact.tolerance;
     settings.max_sweeps = scene.contact.max_sweeps;
     settings.colour_sweeps = scene.contact.colour_sweeps;
@@ -116,7 +128,7 @@ void compute_contact_forces(const Model& model, const State& state,
     warm_start(f.previous_points, f.previous_impulses, f.points, f.match_radius, f.impulses);
     warm_start_friction(f.previous_friction, f.match_radius, f.friction);
     if (scene.contact.solver == ContactSolver::rows) {
-      normal_targets(f.points, f.approach, f.approach_linear, settings, f.targets);
+      normal_targets(f.points, f.approach, f.approach_linear, settings, f.targets, &f.friction);
       f.solver = solve_semm_rows(f.points, f.approach, f.targets, f.responses, f.centres, settings,
                                  f.friction, f.impulses, f.rows);
     } else {
@@ -139,7 +151,10 @@ void compute_contact_forces(const Model& model, const State& state,
     for (size_t k = 0; k < f.friction.size(); ++k) {
       const PatchFriction& p = f.friction[k];
       const Vec3 on_b = (p.t1 * p.tangent1 + p.t2 * p.tangent2) / dt;
-      push(p.body_a, p.body_b, p.centre, on_b, p.twist / dt * p.normal);
+      Vec3 moment = p.twist / dt * p.normal;
+      if (p.roll1 != 0 || p.roll2 != 0)  // rolling resistance
+        moment += (p.roll1 * p.tangent1 + p.roll2 * p.tangent2) / dt;
+      push(p.body_a, p.body_b, p.centre, on_b, moment);
       f.patch_forces[k].tangential = on_b.norm();
     }
   }

@@ -1,6 +1,7 @@
 #include "forces/penalty.hpp"
 
 #include "forces/body_response.hpp"
+#include "forces/materials.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -36,6 +37,36 @@ Vec3 remembered_stretch(const Model& model, const std::vector<PenaltySpring>& ol
   const Vec3 flat = best->stretch - best->stretch.dot(p.normal) * p.normal;
   const Real n = flat.norm();
   return n > 0 ? Vec3(flat * (best->stretch.norm() / n)) : Vec3::Zero();
+}
+
+// World inverse inertia of a body that the contact turns (none for walls and driven bodies).
+Mat3 inverse_inertia_world(const Model& model, const State& state, int body) {
+  if (body < 0 || model.bodies[body].driven()) return Mat3::Zero();
+  const Mat3& g = state.bodies[body].g;
+  return g * model.bodies[body].inertia.inertia_inv * g.transpose();
+}
+
+Vec3 spin(const Model& model, const State& state, int body) {
+  if (body < 0 || model.bodies[body].fixed) return Vec3::Zero();
+  return state.bodies[body].angular_velocity_world();
+}
+
+// Rolling resistance (materials.hpp): the torque on B, -mu_r R F_n along the relative rolling
+// velocity w (omega_B - omega_A off the normal n), but no more than stops that rolling within
+// the step, w / (dt w^.(Q_A + Q_B) w^) with Q the world inverse inertias: it never reverses the
+// rolling, so it only takes energy out.
+Vec3 rolling_torque(const Model& model, const State& state, const ContactPatch& p, Real limit,
+                    Real dt) {
+  const Vec3 w = spin(model, state, p.body_b) - spin(model, state, p.body_a);
+  const Vec3 rolling = w - w.dot(p.normal) * p.normal;
+  const Real speed = rolling.norm();
+  if (!(speed > 0)) return Vec3::Zero();
+  const Vec3 along = rolling / speed;
+  const Real k = along.dot((inverse_inertia_world(model, state, p.body_a) +
+                            inverse_inertia_world(model, state, p.body_b)) *
+                           along);
+  if (!(k > 0)) return Vec3::Zero();
+  return -std::min(limit, speed / (dt * k)) * along;
 }
 
 }  // namespace
@@ -93,11 +124,19 @@ void penalty_forces(const Model& model, const State& state,
     const Real kt = hertz ? c.tangential_stiffness * std::sqrt(depth) : c.tangential_stiffness;
     const Real ct = c.stiffness > 0 ? c.damping * c.tangential_stiffness / c.stiffness : 0;
     Vec3 stretch = remembered_stretch(model, springs, p) + slip * dt;
-    const Real limit = c.friction * fn;
+    const PairCoefficients& coefficients = contact_coefficients(model, p.body_a, p.body_b, p.wall);
+    const Real limit = coefficients.friction * fn;
     if (kt * stretch.norm() > limit) stretch *= limit / (kt * stretch.norm());
     Vec3 ft = -kt * stretch - ct * slip;  // on B
     if (ft.norm() > limit) ft *= limit / ft.norm();
     push(p, p.point, ft);
+    if (coefficients.rolling_resistance > 0 && fn > 0) {
+      const Real radius = rolling_radius(model, state, p.body_a, p.body_b, p.point);
+      const Vec3 moment =
+          rolling_torque(model, state, p, coefficients.rolling_resistance * radius * fn, dt);
+      add_contact_force(model, centres, p.body_a, p.body_b, p.point, Vec3::Zero(), moment, force,
+                        torque);
+    }
     normal_magnitude[k] = fn;
     tangential_magnitude[k] = ft.norm();
     next.push_back({p.body_a, p.body_b, p.wall, p.point, stretch});

@@ -4,7 +4,9 @@
 // patch's corner points in proportion to their depths (at a single point in its centre a face
 // would rock freely about it); a tangential spring per patch, at its centre, that
 // stretches with the slip and slides at the Coulomb limit mu (sum of the normal forces) (for the
-// Hertzian law its stiffness grows like d^(1/2), Mindlin's). No twisting spring. The spring's stretch is the
+// Hertzian law its stiffness grows like d^(1/2), Mindlin's); mu is the patch's, from the
+// materials of its two sides (materials.hpp), as is the rolling resistance: a torque
+// -mu_r R F_n along the relative rolling, clipped to stop it at most. No twisting spring. The spring's stretch is the
 // contact's memory: it is carried from step to step for the patch of the same two bodies that
 // lies within 1% of the body's size of where it was, and forgotten when the contact opens.
 //

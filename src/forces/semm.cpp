@@ -165,6 +165,12 @@ struct FrictionRow {
   Real k_twist = 0;  // twist block
   Vec3 start_slip;   // (t1, t2, spin) at the start of the step
   Real reach = 0;    // sum over points of normal impulse x distance, updated each sweep
+  Real mu = 0;       // the patch's friction coefficient
+  // Rolling resistance: the limit per unit normal impulse (mu_r R; 0: no rolling block), the
+  // angular block of K about the tangents, the rolling velocity at the start of the step.
+  Real rolling_limit = 0;
+  Mat2 k_roll = Mat2::Zero();
+  Vec2 start_roll = Vec2::Zero();
 };
 
 // Relative (t1, t2, spin) of B over A at a friction row's centre.
@@ -220,17 +226,43 @@ void normal_update(int k, std::vector<NormalRow>& rows, std::vector<FrictionRow>
   }
 }
 
-// One patch's friction: tangential, then twist, each within its Coulomb limit.
+// Applies a rolling angular impulse (about tangent1, tangent2) on B, its opposite on A.
+void apply_rolling(FrictionRow& f, const PatchFriction& p, const Vec2& d) {
+  const Vec3 h = d.x() * p.tangent1 + d.y() * p.tangent2;
+  f.b.apply(Vec3::Zero(), h);
+  f.a.apply(Vec3::Zero(), -h);
+}
+
+// One patch's rolling resistance: the 2x2 minimiser of its rolling impulse, with the energy rule
+// of friction_block, scaled into the disc mu_r R (patch normal impulse).
+void rolling_update(FrictionRow& f, PatchFriction& p, Real total, SweepSize& size) {
+  const Vec3 dw = f.b.spin() - f.a.spin();
+  const Vec2 u(p.tangent1.dot(dw), p.tangent2.dot(dw)), now(p.roll1, p.roll2);
+  const Vec2 h = friction_block<Vec2, Mat2>(now, u, f.start_roll, f.k_roll,
+                                            f.rolling_limit * total);
+  apply_rolling(f, p, h - now);
+  p.roll1 = h.x();
+  p.roll2 = h.y();
+  // An angular impulse: compared on the patch's scale, divided by the rolling radius.
+  size.add((h - now).norm() / p.rolling_radius, h.norm() / p.rolling_radius);
+}
+
+// One patch's friction: tangential, then twist, each within its Coulomb limit; then its
+// rolling resistance, if any.
 void friction_update(int k, std::vector<FrictionRow>& friction,
                      std::vector<PatchFriction>& patches, const std::vector<ContactPoint>& points,
-                     const std::vector<PointImpulse>& impulses, Real mu, SweepSize& size) {
+                     const std::vector<PointImpulse>& impulses, SweepSize& size) {
   PatchFriction& p = patches[k];
   FrictionRow& f = friction[k];
+  const Real mu = f.mu;
+  if (!(mu > 0) && !(f.rolling_limit > 0)) return;
   Real total = 0, reach = 0;
   for (int i = p.first; i < p.last; ++i) {
     total += impulses[i].normal;
     reach += impulses[i].normal * (points[i].point - p.centre).norm();
   }
+  if (f.rolling_limit > 0) rolling_update(f, p, total, size);
+  if (!(mu > 0)) return;
   const Vec3 before(p.t1, p.t2, p.twist);
   Vec3 u = slip(f, p);
   const Vec2 t = friction_block<Vec2, Mat2>(Vec2(p.t1, p.t2), u.head<2>(),
@@ -258,7 +290,10 @@ SolverReport sweep(std::vector<NormalRow>& rows, std::vector<FrictionRow>& frict
                    const std::vector<int>& colours, const SolverSettings& settings,
                    std::vector<PointImpulse>& impulses) {
   SolverReport report;
-  const Real mu = settings.friction;
+  // Whether any patch has friction or rolling resistance (their pass is skipped otherwise).
+  bool any_friction = false;
+  for (const FrictionRow& f : friction)
+    any_friction = any_friction || f.mu > 0 || f.rolling_limit > 0;
   std::vector<SweepSize> sizes(static_cast<size_t>(max_threads()));
   for (report.sweeps = 1; report.sweeps <= settings.max_sweeps; ++report.sweeps) {
     std::fill(sizes.begin(), sizes.end(), SweepSize{});
@@ -266,9 +301,9 @@ SolverReport sweep(std::vector<NormalRow>& rows, std::vector<FrictionRow>& frict
     by_colour(colours, sizes, [&](int k, SweepSize& size) {
       normal_update(k, rows, friction, patches, impulses, size);
     });
-    if (mu > 0) {
+    if (any_friction) {
       by_colour(colours, sizes, [&](int k, SweepSize& size) {
-        friction_update(k, friction, patches, points, impulses, mu, size);
+        friction_update(k, friction, patches, points, impulses, size);
       });
     }
     SweepSize total;
@@ -351,6 +386,18 @@ SolverReport solve_laid_out(const std::vector<ContactPoint>& points,
     }
     f.k_twist = p.normal.dot(f.b.response(Vec3::Zero(), p.normal).second +
                              f.a.response(Vec3::Zero(), p.normal).second);
+    f.mu = friction_of(settings, p);
+    f.rolling_limit = rolling_limit_of(settings, p);
+    if (f.rolling_limit > 0) {
+      for (int c = 0; c < 2; ++c) {
+        const Vec3 dw =
+            f.b.response(Vec3::Zero(), e[c]).second + f.a.response(Vec3::Zero(), e[c]).second;
+        for (int r = 0; r < 2; ++r) f.k_roll(r, c) = e[r].dot(dw);
+      }
+      // Neither side turns (walls, fixed bodies): nothing to resist.
+      if (!(f.k_roll.determinant() > 0)) f.rolling_limit = 0;
+      f.start_roll = Vec2(p.start_roll1, p.start_roll2);
+    }
     // The normal block: the change of point i's normal velocity per unit impulse at point j.
     const int m = p.last - p.first;
     f.k_normal.resize(m, m);
@@ -382,15 +429,20 @@ SolverReport solve_laid_out(const std::vector<ContactPoint>& points,
   }
   for (size_t k = 0; k < patches.size(); ++k) {
     PatchFriction& p = patches[k];
-    if (!(settings.friction > 0)) p.t1 = p.t2 = p.twist = 0;
+    if (!(friction[k].mu > 0)) p.t1 = p.t2 = p.twist = 0;
     warm = warm || p.t1 != 0 || p.t2 != 0 || p.twist != 0;
     apply_friction(friction[k], p, Vec3(p.t1, p.t2, p.twist));
+    if (!(friction[k].rolling_limit > 0)) p.roll1 = p.roll2 = 0;
+    if (p.roll1 != 0 || p.roll2 != 0) {
+      warm = true;
+      apply_rolling(friction[k], p, Vec2(p.roll1, p.roll2));
+    }
   }
   SolverReport report = sweep(rows, friction, patches, points, colours, settings, impulses);
   if (!report.converged && warm && pseudo_energy_change(bodies, input) > 0) {
     std::copy(input.begin(), input.end(), bodies.begin());  // the rows point into `bodies`
     std::fill(impulses.begin(), impulses.end(), PointImpulse{});
-    for (PatchFriction& p : patches) p.t1 = p.t2 = p.twist = 0;
+    for (PatchFriction& p : patches) p.t1 = p.t2 = p.twist = p.roll1 = p.roll2 = 0;
     const int first_sweeps = report.sweeps;
     report = sweep(rows, friction, patches, points, colours, settings, impulses);
     report.sweeps += first_sweeps;
@@ -444,6 +496,8 @@ SolverReport solve_targets(const std::vector<ContactPoint>& points,
     p.t1 = laid.t1;
     p.t2 = laid.t2;
     p.twist = laid.twist;
+    p.roll1 = laid.roll1;
+    p.roll2 = laid.roll2;
   }
   return report;
 }
@@ -452,7 +506,7 @@ SolverReport solve_targets(const std::vector<ContactPoint>& points,
 
 void normal_targets(const std::vector<ContactPoint>& points, const std::vector<Real>& start,
                     const std::vector<Real>& start_linear, const SolverSettings& settings,
-                    std::vector<Real>& targets) {
+                    std::vector<Real>& targets, const std::vector<PatchFriction>* patches) {
   // The normal relative velocity required after the step. An impact (approach faster than the
   // threshold) leaves at e times its approach speed; resting contact must not approach; a point
   // already separating may close again as fast as it was opening, no faster. Why the last: over
@@ -480,15 +534,17 @@ void normal_targets(const std::vector<ContactPoint>& points, const std::vector<R
   // approach out, so they never add energy; separating, the energy rule above caps them.
   const Real dt = settings.time_step;
   targets.resize(points.size());
+  const bool per_patch = settings.per_patch && patches;
   for (size_t i = 0; i < points.size(); ++i) {
+    const Real e = per_patch ? (*patches)[points[i].patch].restitution : settings.restitution;
     const Real closing = -start[i];
     const Real gap = -points[i].depth;
     if (gap > 0 && dt > 0) {
       Real target;
-      if (settings.restitution > 0 && closing > settings.restitution_threshold) {
+      if (e > 0 && closing > settings.restitution_threshold) {
         // An impact to come: no braking, only no overlap (closing by exactly the gap at most).
-        const bool now = gap < closing * dt * (3 - settings.restitution) / 2;
-        target = now ? settings.restitution * closing : std::min<Real>(0, closing - 2 * gap / dt);
+        const bool now = gap < closing * dt * (3 - e) / 2;
+        target = now ? e * closing : std::min<Real>(0, closing - 2 * gap / dt);
       } else {
         const Real closing_linear = start_linear.empty() ? closing : -start_linear[i];
         target = std::min<Real>(0, closing_linear / 2 - gap / dt);
@@ -497,7 +553,7 @@ void normal_targets(const std::vector<ContactPoint>& points, const std::vector<R
       targets[i] = target;
       continue;
     }
-    targets[i] = closing > settings.restitution_threshold ? settings.restitution * closing
+    targets[i] = closing > settings.restitution_threshold ? e * closing
                  : closing < 0                            ? closing
                                                           : 0;
   }
@@ -508,7 +564,7 @@ SolverReport solve_semm(const std::vector<ContactPoint>& points, const std::vect
                         const SolverSettings& settings, std::vector<PatchFriction>& patches,
                         std::vector<PointImpulse>& impulses) {
   std::vector<Real> targets;
-  normal_targets(points, start, {}, settings, targets);
+  normal_targets(points, start, {}, settings, targets, &patches);
   std::vector<BodyResponse> after;
   return solve_targets(points, targets, bodies, centres, settings, patches, impulses, after);
 }
@@ -529,7 +585,7 @@ SolverReport solve_separation(const std::vector<ContactPoint>& points,
   settings.sync = stopping.sync;
   settings.energy_check = false;
   impulses.assign(points.size(), PointImpulse{});
-  for (PatchFriction& p : patches) p.t1 = p.t2 = p.twist = 0;
+  for (PatchFriction& p : patches) p.t1 = p.t2 = p.twist = p.roll1 = p.roll2 = 0;
   if (rows) {
     const SolverReport report = solve_semm_rows(points, {}, targets, bodies, centres, settings,
                                                 patches, impulses, *rows);

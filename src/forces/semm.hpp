@@ -49,13 +49,29 @@ struct PatchFriction {
   Vec3 start_slip = Vec3::Zero();
   // The starting guess (warm start), then the result.
   Real t1 = 0, t2 = 0, twist = 0;
+  // Rolling resistance (materials.hpp): the angular impulse on B (the opposite on A) about
+  // tangent1 and tangent2, warm start then result, as t1, t2; and the relative rolling
+  // velocity (B's spin minus A's along tangent1, tangent2) at the start of the step.
+  Real roll1 = 0, roll2 = 0;
+  Real start_roll1 = 0, start_roll2 = 0;
+  // The patch's coefficients, from the materials of its two sides (Model::coefficients), set
+  // each step by compute_contact_forces and read where SolverSettings::per_patch is set:
+  // friction mu, restitution e, rolling resistance mu_r and the rolling radius R (the rolling
+  // torque is at most mu_r R times the normal force; mu_r R = 0: no rolling row). Derived
+  // each step from the Model and the State, so not part of the contact memory (checkpoint,
+  // messages), unlike the impulses above.
+  Real friction = 0, restitution = 0, rolling_resistance = 0, rolling_radius = 0;
 };
 
 class SolverSync;  // solver_sync.hpp
 
 struct SolverSettings {
+  // Scene-wide coefficients, for every patch unless `per_patch`: then each patch's own (its
+  // PatchFriction's friction, restitution and rolling resistance, from its materials), and
+  // `friction` and `restitution` here are not read.
   Real friction = 0;
   Real restitution = 0;
+  bool per_patch = false;
   Real restitution_threshold = 0;  // approach speeds below this are resting contact (e = 0)
   int max_sweeps = 500;
   Real tolerance = 1e-9;  // relative change of the impulses that ends the sweeps
@@ -76,6 +92,18 @@ struct SolverReport {
   Real scale = 1;       // < 1: impulses scaled down so as to add no energy (semm_rows.hpp)
 };
 
+// A patch's friction coefficient, restitution, and rolling torque limit per unit normal impulse
+// (mu_r R, a length; 0 without per-patch coefficients: no rolling resistance).
+inline Real friction_of(const SolverSettings& s, const PatchFriction& p) {
+  return s.per_patch ? p.friction : s.friction;
+}
+inline Real restitution_of(const SolverSettings& s, const PatchFriction& p) {
+  return s.per_patch ? p.restitution : s.restitution;
+}
+inline Real rolling_limit_of(const SolverSettings& s, const PatchFriction& p) {
+  return s.per_patch ? p.rolling_resistance * p.rolling_radius : 0;
+}
+
 // Relative velocity (B minus A, world) of the pseudo velocities y at a point, before any
 // contact impulse: what the objective's gradient sees.
 Vec3 relative_velocity(const std::vector<BodyResponse>& bodies, const std::vector<Vec3>& centres,
@@ -86,9 +114,12 @@ Vec3 relative_velocity(const std::vector<BodyResponse>& bodies, const std::vecto
 // `start`, the normal relative velocity at the start of the step. semm.cpp says why.
 // `start_linear`, if not empty, is the part of `start` due to the centres' velocities alone
 // (the gap of contact before overlap closes by their mean over the step, by the end spin).
+// With settings.per_patch, each point's restitution is its patch's (`patches`, indexed by
+// ContactPoint::patch).
 void normal_targets(const std::vector<ContactPoint>& points, const std::vector<Real>& start,
                     const std::vector<Real>& start_linear, const SolverSettings& settings,
-                    std::vector<Real>& targets);
+                    std::vector<Real>& targets,
+                    const std::vector<PatchFriction>* patches = nullptr);
 
 // T(y) - T(y0) of the bodies' pseudo velocities y against y0: sum of 1/2 (y + y0).W^-1 (y - y0).
 Real pseudo_energy_change(const std::vector<BodyResponse>& now,

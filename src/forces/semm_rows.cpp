@@ -84,6 +84,46 @@ void build_patch(const std::vector<ContactPoint>& points, const std::vector<Real
   f.twist = p.twist;
 }
 
+// Builds the rolling row of a patch (materials.hpp): its angular block K = t_i.(Q_a + Q_b) t_j.
+void build_rolling(const std::vector<BodyResponse>& bodies, const PatchFriction& p, Real limit,
+                   const Memory::FrictionRow& f, Memory::RollingRow& r) {
+  const int still = static_cast<int>(bodies.size());
+  const Mat3 q_a = f.a == still ? Mat3::Zero() : bodies[f.a].angular;
+  const Mat3 q_b = f.b == still ? Mat3::Zero() : bodies[f.b].angular;
+  r.a = f.a;
+  r.b = f.b;
+  r.tangent1 = p.tangent1;
+  r.tangent2 = p.tangent2;
+  r.turn_a1 = q_a * p.tangent1;
+  r.turn_a2 = q_a * p.tangent2;
+  r.turn_b1 = q_b * p.tangent1;
+  r.turn_b2 = q_b * p.tangent2;
+  Eigen::Matrix<Real, 2, 2> k;
+  k(0, 0) = p.tangent1.dot(r.turn_a1 + r.turn_b1);
+  k(1, 1) = p.tangent2.dot(r.turn_a2 + r.turn_b2);
+  k(0, 1) = k(1, 0) = p.tangent1.dot(r.turn_a2 + r.turn_b2);
+  const Real det = k.determinant();
+  r.inverse_k = det > 0 ? Eigen::Matrix<Real, 2, 2>(k.inverse())
+                        : Eigen::Matrix<Real, 2, 2>::Zero();
+  r.limit = det > 0 ? limit : 0;
+  r.radius = p.rolling_radius;
+  r.start = Vec2(p.start_roll1, p.start_roll2);
+  r.r1 = det > 0 ? p.roll1 : 0;
+  r.r2 = det > 0 ? p.roll2 : 0;
+}
+
+// Applies a rolling angular impulse d (about tangent1, tangent2) on B, its opposite on A.
+inline void apply_rolling(Memory& m, const Memory::RollingRow& r, int still, const Vec2& d) {
+  if (r.b != still) m.angular_velocity[r.b] += d.x() * r.turn_b1 + d.y() * r.turn_b2;
+  if (r.a != still) m.angular_velocity[r.a] -= d.x() * r.turn_a1 + d.y() * r.turn_a2;
+}
+
+// Relative rolling velocity (B's spin minus A's about tangent1, tangent2) in arrays w.
+inline Vec2 rolling_velocity(const Memory::RollingRow& r, const std::vector<Vec3>& w) {
+  const Vec3 dw = w[r.b] - w[r.a];
+  return Vec2(r.tangent1.dot(dw), r.tangent2.dot(dw));
+}
+
 // Adds a linear impulse j (world) at a row's arm on slot `s`, turning it by `turn`.
 inline void push(Memory& m, int s, int still, const Vec3& j, const Vec3& turn) {
   // A driven body's velocity is not the impulses' to change (and, shared by the patches of one
@@ -116,10 +156,11 @@ inline Vec3 slip(const Memory& m, const Memory::FrictionRow& f) {
 }
 
 // One patch: its normal rows, each clamped at zero, then its friction within its Coulomb limits
-// (last, so that a converged sweep leaves friction obeying its energy rule at the final
-// velocities, as in solve_semm).
-void update_patch(Memory& m, int k, int still, Real mu, SweepSize& size) {
+// and its rolling resistance within mu_r R (last, so that a converged sweep leaves them obeying
+// their energy rule at the final velocities, as in solve_semm).
+void update_patch(Memory& m, int k, int still, SweepSize& size) {
   Memory::FrictionRow& f = m.friction[k];
+  const Real mu = f.mu;
   for (int i = f.first; i < f.last; ++i) {
     Memory::NormalRow& r = m.rows[i];
     const Real u = r.normal.dot(m.velocity[r.b] - m.velocity[r.a]) +
@@ -162,6 +203,23 @@ void update_patch(Memory& m, int k, int still, Real mu, SweepSize& size) {
     size.add((Vec2(f.t1, f.t2) - before.head<2>()).norm() + scale * std::abs(f.twist - before.z()),
              Vec2(f.t1, f.t2).norm());
   }
+  if (f.rolling >= 0) {
+    // As the tangential block: the minimiser, the mirrored start if it would push along the
+    // rolling the step started with (no energy added), scaled into the disc.
+    Memory::RollingRow& r = m.rolling[f.rolling];
+    Real total = 0;
+    for (int i = f.first; i < f.last; ++i) total += m.rows[i].impulse;
+    const Vec2 u = rolling_velocity(r, m.angular_velocity), now(r.r1, r.r2);
+    Vec2 h = now - r.inverse_k * u;
+    if (h.dot(r.start) > 0) h = now - r.inverse_k * (u + r.start);
+    const Real limit = r.limit * total, length = h.norm();
+    if (length > limit) h *= limit / length;
+    apply_rolling(m, r, still, h - now);
+    r.r1 = h.x();
+    r.r2 = h.y();
+    // An angular impulse: on the patch's scale, divided by the rolling radius.
+    size.add((h - now).norm() / r.radius, h.norm() / r.radius);
+  }
 }
 
 SolverReport sweeps(Memory& m, const std::vector<int>& colours, const SolverSettings& settings,
@@ -170,9 +228,8 @@ SolverReport sweeps(Memory& m, const std::vector<int>& colours, const SolverSett
   m.sizes.resize(static_cast<size_t>(max_threads()));
   for (report.sweeps = 1; report.sweeps <= settings.max_sweeps; ++report.sweeps) {
     std::fill(m.sizes.begin(), m.sizes.end(), SweepSize{});
-    by_colour(colours, m.sizes, [&](int k, SweepSize& size) {
-      update_patch(m, k, still, settings.friction, size);
-    });
+    by_colour(colours, m.sizes,
+              [&](int k, SweepSize& size) { update_patch(m, k, still, size); });
     SweepSize total;
     for (const SweepSize& s : m.sizes) total.add(s.change, s.largest);
     // Over ranks: the copies of shared bodies agree again, and every rank stops at the same
@@ -209,6 +266,10 @@ bool apply_all(Memory& m, int still) {
   for (const Memory::FrictionRow& f : m.friction) {
     any = any || f.t1 != 0 || f.t2 != 0 || f.twist != 0;
     apply_friction(m, f, still, Vec3(f.t1, f.t2, f.twist));
+  }
+  for (const Memory::RollingRow& r : m.rolling) {
+    any = any || r.r1 != 0 || r.r2 != 0;
+    apply_rolling(m, r, still, Vec2(r.r1, r.r2));
   }
   return any;
 }
@@ -263,6 +324,14 @@ Real energy_scale(const Memory& m, const std::vector<BodyResponse>& bodies,
     added += j.dot(f.start_slip + after) / 2;
     curvature += j.dot(after - row_slip(f, free_v, free_w)) / 2;
   }
+  // Rolling rows: the angular impulse does the work h.(w_start + w_after) / 2 likewise.
+  for (const Memory::RollingRow& r : m.rolling) {
+    const Vec2 h(r.r1, r.r2);
+    if (h == Vec2::Zero()) continue;
+    const Vec2 after = rolling_velocity(r, m.angular_velocity);
+    added += h.dot(r.start + after) / 2;
+    curvature += h.dot(after - rolling_velocity(r, free_w)) / 2;
+  }
   if (sync) {  // each row is on one rank: the step's sums are the ranks' sums
     added = sync->sum(added);
     curvature = sync->sum(curvature);
@@ -309,17 +378,26 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
   m.point_of_row.resize(points.size());
   m.friction.resize(n_patches);
   m.patch_of_friction.resize(n_patches);
-  int next = 0;
+  int next = 0, rolling = 0;
   for (size_t j = 0; j < n_patches; ++j) {
     const PatchFriction& p = patches[colouring.order[j]];
     m.friction[j].first = next;
     next += p.last - p.first;
+    // A rolling row where the patch has rolling resistance and one of its sides turns.
+    const bool rolls =
+        rolling_limit_of(settings, p) > 0 &&
+        (slot_of(bodies, p.body_a) != still || slot_of(bodies, p.body_b) != still);
+    m.friction[j].rolling = rolls ? rolling++ : -1;
   }
+  m.rolling.resize(static_cast<size_t>(rolling));
   parallel_for(static_cast<long long>(n_patches), 64, [&](long long j) {
     Memory::FrictionRow& f = m.friction[j];
-    build_patch(points, targets, bodies, centres, patches[colouring.order[j]], impulses, f.first,
-                m, f);
-    if (!(settings.friction > 0)) f.t1 = f.t2 = f.twist = 0;
+    const PatchFriction& p = patches[colouring.order[j]];
+    build_patch(points, targets, bodies, centres, p, impulses, f.first, m, f);
+    f.mu = friction_of(settings, p);
+    if (!(f.mu > 0)) f.t1 = f.t2 = f.twist = 0;
+    if (f.rolling >= 0)
+      build_rolling(bodies, p, rolling_limit_of(settings, p), f, m.rolling[f.rolling]);
     m.patch_of_friction[j] = colouring.order[j];
   });
 
@@ -358,6 +436,7 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
       reset_velocities(m, bodies);
       for (Memory::NormalRow& r : m.rows) r.impulse = 0;
       for (Memory::FrictionRow& f : m.friction) f.t1 = f.t2 = f.twist = 0;
+      for (Memory::RollingRow& r : m.rolling) r.r1 = r.r2 = 0;
       const int first_sweeps = report.sweeps;
       report = sweeps(m, colouring.start, settings, still);
       report.sweeps += first_sweeps;
@@ -373,6 +452,9 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
     p.t1 = report.scale * m.friction[j].t1;
     p.t2 = report.scale * m.friction[j].t2;
     p.twist = report.scale * m.friction[j].twist;
+    const int r = m.friction[j].rolling;
+    p.roll1 = r >= 0 ? report.scale * m.rolling[r].r1 : 0;
+    p.roll2 = r >= 0 ? report.scale * m.rolling[r].r2 : 0;
   }
   return report;
 }

@@ -43,11 +43,27 @@ struct RowSolverMemory {
     Real inverse_k_twist = 0;  // 0: no twist row (both sides without rotation)
     Vec3 start_slip;
     Real t1 = 0, t2 = 0, twist = 0;
+    Real mu = 0;       // the patch's friction coefficient
+    int rolling = -1;  // its rolling row in `rolling`, or -1: none
+  };
+  // Rolling resistance of a patch with mu_r > 0: a bounded 2-D angular row, an angular impulse
+  // about the patch's tangents (on B, the opposite on A) inside the disc mu_r R (sum of the
+  // patch's normal impulses); patches without it have none and cost nothing.
+  struct RollingRow {
+    int a = 0, b = 0;
+    Vec3 tangent1, tangent2;
+    Vec3 turn_a1, turn_a2, turn_b1, turn_b2;  // Q t
+    Eigen::Matrix<Real, 2, 2> inverse_k;
+    Real limit = 0;   // mu_r R
+    Real radius = 0;  // R: the impulse's scale for the sweeps' change
+    Eigen::Matrix<Real, 2, 1> start = Eigen::Matrix<Real, 2, 1>::Zero();
+    Real r1 = 0, r2 = 0;
   };
   std::vector<Vec3> velocity, angular_velocity;  // pseudo velocities per slot
   std::vector<Real> inverse_mass;
   std::vector<NormalRow> rows;
   std::vector<FrictionRow> friction;
+  std::vector<RollingRow> rolling;
   std::vector<int> point_of_row, patch_of_friction;
   std::vector<SweepSize> sizes;
   std::vector<Vec3> free_velocity, free_angular_velocity;  // energy check (semm_rows.cpp)

@@ -44,7 +44,7 @@ void warm_start_friction(const std::vector<PatchFriction>& previous,
                          const std::vector<Real>& radius, std::vector<PatchFriction>& patches) {
   size_t old_first = 0;
   for (PatchFriction& p : patches) {
-    p.t1 = p.t2 = p.twist = 0;
+    p.t1 = p.t2 = p.twist = p.roll1 = p.roll2 = 0;
     while (old_first < previous.size() && pair_key(previous[old_first]) < pair_key(p)) ++old_first;
     Real best_distance = radius[p.body_a];
     const PatchFriction* best = nullptr;
@@ -60,6 +60,11 @@ void warm_start_friction(const std::vector<PatchFriction>& previous,
     p.t1 = t.dot(p.tangent1);
     p.t2 = t.dot(p.tangent2);
     p.twist = best->twist * best->normal.dot(p.normal);
+    if (best->roll1 != 0 || best->roll2 != 0) {  // rolling resistance: as the tangential impulse
+      const Vec3 h = best->roll1 * best->tangent1 + best->roll2 * best->tangent2;
+      p.roll1 = h.dot(p.tangent1);
+      p.roll2 = h.dot(p.tangent2);
+    }
   }
 }
 

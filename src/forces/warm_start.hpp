@@ -20,7 +20,7 @@ void warm_start(const std::vector<ContactPoint>& previous,
 
 // The same for the friction of patches: a patch of the same pair whose centre is within
 // `radius` of the old one's takes its tangential impulse (re-expressed in the new frame) and
-// its twist.
+// its twist, and its rolling impulse likewise.
 void warm_start_friction(const std::vector<PatchFriction>& previous,
                          const std::vector<Real>& radius, std::vector<PatchFriction>& patches);
 

@@ -13,8 +13,9 @@ namespace tem {
 namespace {
 
 constexpr char kMagic[8] = {'T', 'E', 'M', 'C', 'K', 'P', 'T', '\n'};
-// 2: the population of granular processes (body tags, inlets, sensors, driven work) and the
-// sizes of removed.csv and sensors.csv.
+// 2: the population of granular processes (body tags, inlets, sensors, driven work), the
+// sizes of removed.csv and sensors.csv, and the rolling impulses of PatchFriction (roll1,
+// roll2).
 constexpr std::uint32_t kVersion = 2;
 
 std::uint64_t fnv1a(const char* data, std::size_t size) {
@@ -102,7 +103,8 @@ void fields(B& b, F&& f) {
     f(b.normal);
   } else if constexpr (std::is_same_v<std::remove_const_t<B>, PatchFriction>) {
     f(b.first), f(b.last), f(b.body_a), f(b.body_b), f(b.wall), f(b.centre), f(b.normal),
-        f(b.tangent1), f(b.tangent2), f(b.start_slip), f(b.t1), f(b.t2), f(b.twist);
+        f(b.tangent1), f(b.tangent2), f(b.start_slip), f(b.t1), f(b.t2), f(b.twist), f(b.roll1),
+        f(b.roll2);
   } else if constexpr (std::is_same_v<std::remove_const_t<B>, BodyTag>) {
     f(b.id), f(b.inlet), f(b.copy), f(b.scale);
   } else if constexpr (std::is_same_v<std::remove_const_t<B>, InletProgress>) {
