@@ -48,6 +48,12 @@ stays valid (keeping its Simulation alive) as long as it exists. Copy one
 are writable views: what is written into them is applied at every later step until changed.
 mass, volume, fixed and inertia_body are read-only views on constants; inertia is a copy.
 Units are the scene's (cm, g, s by default).
+
+Where bodies come and go (inlets, outlets, removed_at: docs/processes.md) the rows follow the
+live bodies in the order of their ids: a step can add rows at the end and take rows out, the
+others moving up. An array taken before such a step keeps its length and its memory stays
+valid, but its rows then belong to the bodies now at those places: read ``sim.bodies`` (and
+its names) again after a step that changed ``len(sim)``.
 )doc")
       .def("__len__", &Bodies::count)
       .def("__repr__",

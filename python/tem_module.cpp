@@ -218,9 +218,12 @@ the normal and tangential forces on body_a, averaged over the step: forces, not 
             d["kinetic"] = e.kinetic;
             d["potential"] = e.potential;
             d["total"] = e.total();
+            d["driven_work"] = e.driven_work;
             return d;
           },
-          "dict with kinetic, potential (of gravity) and total energy.")
+          "dict with kinetic, potential (of gravity) and total energy of the bodies that move "
+          "freely, and driven_work: the work bodies with a prescribed motion have done on them "
+          "since the start (total - driven_work never rises without external loads).")
       .def(
           "state_hash", [](PySimulation& s) { return s.get().state_hash_hex(); },
           "Hash of the state's exact bits, 16 hex digits, as `tem run --hash` prints it.")

@@ -222,7 +222,8 @@ Rolling roll(Real mu_r, ContactSolver solver, bool penalty = false) {
     scene.contact.damping = 2 * std::sqrt(3.1 * 1e6);
   }
   scene.materials = {material("prism", 0.8, 0, mu_r), material("floor", 0.8)};
-  scene.walls.push_back({Vec3::Zero(), Vec3::UnitZ(), "floor", std::nullopt});
+  scene.walls.push_back({Vec3::Zero(), Vec3::UnitZ()});
+  scene.walls.back().material = "floor";
   BodyDef prism;
   prism.name = "prism";
   prism.path = "bodies[0]";

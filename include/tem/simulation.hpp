@@ -11,7 +11,12 @@
 //
 // Memory: the state arrays (position_data() ...) point into the simulation's own storage; they
 // stay valid, and see each new step without a copy, for the life of the Simulation object
-// (moving the object keeps them valid too). One Simulation is used from one thread at a time;
+// (moving the object keeps them valid too). Where bodies come and go (inlets, outlets,
+// removed_at: docs/processes.md), body_count() changes between steps and the arrays hold the
+// live bodies in the order of their ids: new ones are appended, removed ones taken out and the
+// others moved up. The pointers still stay valid (room for every body the run can hold is
+// reserved at load), but an index names whichever body is at that place now: look bodies up by
+// name (body_index) after a step that changed body_count(). One Simulation is used from one thread at a time;
 // step() shares its work among the threads set by set_threads().
 #pragma once
 
@@ -47,9 +52,13 @@ struct Contact {
   Real tangential_force = 0;
 };
 
+// Energies of the bodies that move freely (bodies with a prescribed motion are driven from
+// outside and not counted), and the work the driven bodies have done on them through contact
+// since the start: with no external loads, total() - driven_work never rises.
 struct SystemEnergies {
   Real kinetic = 0;
   Real potential = 0;  // of gravity, -M G.x summed
+  Real driven_work = 0;
   Real total() const { return kinetic + potential; }
 };
 

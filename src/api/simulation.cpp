@@ -81,6 +81,7 @@ Simulation::Impl::Impl(Model m) : model(std::move(m)) {
 
 void Simulation::Impl::reserve_capacity() {
   const size_t capacity = population_capacity(model);
+  model.bodies.reserve(capacity);  // the mass, volume and inertia views point into it
   state.bodies.reserve(capacity);
   state.tags.reserve(capacity);
   workspace.loads.force.reserve(capacity);
@@ -363,7 +364,7 @@ std::vector<Contact> Simulation::contacts() const {
 
 SystemEnergies Simulation::energies() const {
   const Energies e = system_energies(impl_->model, impl_->state);
-  return {e.kinetic, e.potential};
+  return {e.kinetic, e.potential, impl_->state.driven_work};
 }
 
 std::uint64_t Simulation::state_hash() const { return tem::state_hash(impl_->state); }

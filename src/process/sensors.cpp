@@ -78,7 +78,10 @@ std::vector<SensorReading> take_sensor_readings(const Model& model, State& state
         }
         for (size_t b = 0; b < model.bodies.size(); ++b)
           for (int watched : model.bodies[b].force_sensors)
-            if (watched == static_cast<int>(k)) ++r.count;
+            if (watched == static_cast<int>(k)) {
+              ++r.count;
+              r.mass += model.bodies[b].inertia.mass;
+            }
         t.force = t.torque = Vec3::Zero();
         t.steps = 0;
         break;
