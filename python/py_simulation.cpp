@@ -16,11 +16,21 @@ void set_threads(int threads) {
 }
 
 PySimulation::PySimulation(tem::Simulation sim) : sim_(std::move(sim)) {
+  const size_t capacity = static_cast<size_t>(std::max(sim_.body_capacity(), 1));
+  masses_.reserve(capacity);
+  volumes_.reserve(capacity);
+  inertia_body_.reserve(9 * capacity);
+  fixed_ = std::make_unique<bool[]>(capacity);
+  refresh_constants();
+}
+
+void PySimulation::refresh_constants() {
+  if (population_version_ == sim_.population_version()) return;
+  population_version_ = sim_.population_version();
   const int n = sim_.body_count();
   masses_.resize(n);
   volumes_.resize(n);
   inertia_body_.resize(9 * static_cast<size_t>(n));
-  fixed_ = std::make_unique<bool[]>(std::max(n, 1));
   for (int i = 0; i < n; ++i) {
     masses_[i] = sim_.mass(i);
     volumes_[i] = sim_.volume(i);
@@ -40,6 +50,14 @@ tem::Simulation& PySimulation::get() {
 }
 
 void PySimulation::step(long long n) {
+  struct Refresh {  // also when Ctrl-C ends the steps early
+    PySimulation& s;
+    ~Refresh() { s.refresh_constants(); }
+  } refresh{*this};
+  step_unrefreshed(n);
+}
+
+void PySimulation::step_unrefreshed(long long n) {
   if (n < 0) throw py::value_error("step: n must be 0 or more, got " + std::to_string(n));
   tem::Simulation& sim = get();
   // Declared before the release, so cleared after the GIL is taken back.

@@ -28,15 +28,20 @@ class PySimulation {
   // step(n) with the GIL released, in chunks of about 0.1 s between which Ctrl-C is noticed.
   void step(long long n);
 
-  // Constants per body, kept here so that the arrays on them are views too.
+  // Constants per body, kept here so that the arrays on them are views too; refreshed after a
+  // step where bodies came or went (room for the run's capacity keeps the pointers still).
   const std::vector<double>& masses() const { return masses_; }
   const std::vector<double>& volumes() const { return volumes_; }
   const std::vector<double>& inertia_body() const { return inertia_body_; }  // 9 per body
   const bool* fixed() const { return fixed_.get(); }                         // one bool per body
 
  private:
+  void refresh_constants();
+  void step_unrefreshed(long long n);
+
   tem::Simulation sim_;
   bool stepping_ = false;  // read and written with the GIL held only
+  long long population_version_ = -1;  // of the constants held
   std::vector<double> masses_, volumes_, inertia_body_;
   std::unique_ptr<bool[]> fixed_;
 };

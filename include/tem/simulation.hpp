@@ -93,6 +93,12 @@ class Simulation {
 
   // --- bodies ---------------------------------------------------------------------------
   int body_count() const;
+  // The most bodies this run can hold at once (those at the start and every inlet's count):
+  // the arrays below have room for them all, so their pointers never move.
+  int body_capacity() const;
+  // Changes whenever bodies come or go (inlets, outlets, removed_at): indices and names read
+  // before such a change may no longer match.
+  long long population_version() const;
   const std::string& body_name(int body) const;
   int body_index(const std::string& name) const;  // -1 when there is none
   bool body_fixed(int body) const;

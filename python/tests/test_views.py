@@ -186,3 +186,37 @@ def test_module_documents_the_lifetime():
     assert "view" in tem.__doc__ and "alive" in tem.__doc__
     assert "no copy" in tem.Bodies.position.__doc__
     assert issubclass(tem.SceneError, ValueError)
+
+
+def test_bodies_follow_the_live_set_when_bodies_come_and_go():
+    """Inlets add rows at the end, outlets and a gate take rows out; arrays taken before keep
+    valid memory, and sim.bodies read again has the live bodies with their names."""
+    sim = tem.Simulation(scene_path("tests/scenes/processes/gate_outlet.json"))
+    first = sim.bodies.position
+    at_load = len(sim)  # the gate and the inlet's first grain, due at t = 0
+    assert at_load == 2
+    pointer = data_pointer(first)
+    counts = []
+    for _ in range(80):
+        sim.step(10)
+        b = sim.bodies
+        counts.append(len(b))
+        assert b.position.shape == (len(sim), 3)
+        assert len(b.names) == len(sim)
+        # Views on the live rows: the memory never moves (room is reserved at load); with no
+        # body left the array is an empty one of its own.
+        if len(b):
+            assert data_pointer(b.position) == pointer
+        for i, name in enumerate(b.names):
+            assert sim.bodies.names[i] == name
+        # Masses of the copies within their size factors (0.8..1.2 of a 0.5 cm cube of 2.5).
+        grains = [i for i, n in enumerate(b.names) if n.startswith("grain_")]
+        if grains:
+            m = b.mass[grains]
+            assert (m >= 0.8 ** 3 * 0.3125 * (1 - 1e-12)).all()
+            assert (m <= 1.2 ** 3 * 0.3125 * (1 + 1e-12)).all()
+    assert max(counts) > 30  # grains came in
+    assert counts[-1] == 0   # then the gate went and the outlet took every grain
+    assert first.shape[0] == at_load  # an old array keeps its length
+    e = sim.energies()
+    assert set(e) >= {"kinetic", "potential", "total", "driven_work"}

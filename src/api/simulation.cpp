@@ -246,6 +246,10 @@ void check_body(const Model& model, int body) {
 }  // namespace
 
 int Simulation::body_count() const { return static_cast<int>(impl_->model.bodies.size()); }
+int Simulation::body_capacity() const {
+  return static_cast<int>(population_capacity(impl_->model));
+}
+long long Simulation::population_version() const { return impl_->model.population_version; }
 const std::string& Simulation::body_name(int body) const {
   check_body(impl_->model, body);
   return impl_->model.bodies[body].name;

@@ -244,5 +244,12 @@ elif MODE == "refuse":
     if message.count("is not distributed") != 1:
         sys.exit(f"the reason should be printed once (by rank 0):\n{message}")
     print("refused with:", message.strip())
+    # Granular processes (bodies that come and go, sensors) are not distributed yet either.
+    process = os.path.join(os.path.dirname(SCENE), "..", "..", "tests", "scenes", "processes",
+                           "gate_outlet.json")
+    message = run([process, "--out", fresh("refused_process")], 2, expect=1)
+    if "granular processes" not in message or "without mpirun" not in message:
+        sys.exit(f"a process scene is not refused with its reason:\n{message}")
+    print("refused with:", message.strip())
 else:
     sys.exit(f"unknown mode {MODE}")
