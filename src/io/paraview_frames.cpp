@@ -32,6 +32,10 @@ std::string bodies_vtu(const Model& model, const State& state, const std::vector
     }
     const BodyState& s = state.bodies[b];
     const Vec3 w = s.angular_velocity_world();
+    // The body's stable id (its index unless bodies have come or gone), so that ParaView can
+    // follow one body from frame to frame.
+    const int body_id =
+        b < state.tags.size() ? static_cast<int>(state.tags[b].id) : static_cast<int>(b);
     for (const BlockInstance& instance : model.bodies[b].blocks) {
       const Block& block = model.blocks[instance.block];
       const BlockPose pose = block_pose(instance, s);
@@ -44,7 +48,7 @@ std::string bodies_vtu(const Model& model, const State& state, const std::vector
       }
       for (const Triangle& t : block.triangles()) {
         for (int k = 0; k < 3; ++k) connectivity.push_back(first + t.nodes[k]);
-        body_ids.push_back(static_cast<int>(b));
+        body_ids.push_back(body_id);
         block_ids.push_back(block_id);
       }
       ++block_id;
