@@ -342,3 +342,88 @@ TEST(Processes, InletRegionTooSmallForOneCopyIsRefused) {
 
 }  // namespace
 }  // namespace tem
+
+namespace tem {
+namespace {
+
+// Copies placed by an inlet inside a cup (whose bounding sphere holds the whole inlet) never
+// start overlapping anything: grains that pop apart at insertion, as DEM users know them, would
+// show as patches of positive depth where the copies were placed.
+TEST(Processes, InletCopiesInsideACupStartClearOfEverything) {
+  const std::string scene = R"({
+    "time_step": 5e-4, "duration": 0.3,
+    "contact": {"tolerance": 1e-3, "max_sweeps": 20},
+    "bodies": [{"name": "cup", "fixed": true, "position": [0, 0, 0],
+      "shape": {"type": "compound", "blocks": [
+        {"type": "box", "size": [4, 4, 0.5], "position": [0, 0, -0.25]},
+        {"type": "box", "size": [0.5, 4, 4], "position": [-2.25, 0, 2]},
+        {"type": "box", "size": [0.5, 4, 4], "position": [2.25, 0, 2]},
+        {"type": "box", "size": [5, 0.5, 4], "position": [0, -2.25, 2]},
+        {"type": "box", "size": [5, 0.5, 4], "position": [0, 2.25, 2]}]}}],
+    "inlets": [{"name": "grain", "region": {"min": [-2, -2, 0], "max": [2, 2, 2]}, "rate": 3000,
+                "count": 100, "seed": 9,
+                "body": {"shape": {"type": "prism", "sides": 6, "radius": 0.25, "height": 0.2},
+                         "density": 2.5, "scale": {"min": 0.7, "max": 1.3}}}]
+  })";
+  Simulation sim = Simulation::from_json(scene);
+  int most = 0;
+  std::set<std::string> fresh;  // placed at the end of the last step
+  int checked = 0;
+  for (int k = 0; k < 300; ++k) {
+    std::set<std::string> before;
+    for (int i = 0; i < sim.body_count(); ++i) before.insert(sim.body_name(i));
+    sim.step();
+    // The patches of this step were found where the last one left the bodies: the new copies'
+    // are their contacts as placed, all still a gap apart (depth < 0) or touching at most.
+    for (const Contact& c : sim.contacts()) {
+      const bool a = c.body_a >= 0 && fresh.count(sim.body_name(c.body_a));
+      const bool b = c.body_b >= 0 && fresh.count(sim.body_name(c.body_b));
+      if (!a && !b) continue;
+      ++checked;
+      EXPECT_LE(c.depth, 0) << "step " << k;
+    }
+    fresh.clear();
+    for (int i = 0; i < sim.body_count(); ++i)
+      if (!before.count(sim.body_name(i))) fresh.insert(sim.body_name(i));
+    most = std::max(most, sim.body_count() - 1);
+    for (int i = 1; i < sim.body_count(); ++i) {
+      const Vec3 x = sim.position(i);
+      ASSERT_LT(std::abs(x.x()), 2) << sim.body_name(i);
+      ASSERT_LT(std::abs(x.y()), 2) << sim.body_name(i);
+      ASSERT_GT(x.z(), 0) << sim.body_name(i);
+    }
+  }
+  // Most copies are placed with a gap wider than the contact margin (their bounding sphere is
+  // clear, and a prism fills little of it); some land within reach of another at once.
+  EXPECT_GT(checked, 0);
+  EXPECT_EQ(most, 100);  // every copy found room, late or not
+}
+
+// `fill` takes the same size factors: each copy's mass within min^3 and max^3 of the
+// template's, and not all alike.
+TEST(Processes, FillDrawsASizeFactorPerCopy) {
+  const std::string scene = R"({
+    "container": {"min": [0, 0, 0], "max": [6, 6, 6]},
+    "fill": [{"name": "grain", "count": 50, "region": {"min": [0, 0, 0], "max": [6, 6, 6]},
+              "body": {"shape": {"type": "box", "size": [0.5, 0.5, 0.5]}, "density": 2,
+                       "scale": {"min": 0.5, "max": 1.5}}}]
+  })";
+  Simulation sim = Simulation::from_json(scene);
+  ASSERT_EQ(sim.body_count(), 50);
+  const Real m0 = 2 * 0.125;
+  Real lightest = 1e9, heaviest = 0;
+  for (int i = 0; i < 50; ++i) {
+    const Real m = sim.mass(i);
+    lightest = std::min(lightest, m);
+    heaviest = std::max(heaviest, m);
+    EXPECT_GE(m, 0.125 * m0 * (1 - 1e-12));
+    EXPECT_LE(m, 3.375 * m0 * (1 + 1e-12));
+    // A scaled cube's inertia is m s^2 / 6 with s its scaled edge: exact for the scaled shape.
+    const Real edge = std::cbrt(m / 2);
+    EXPECT_NEAR(sim.inertia_body(i)(0, 0), m * edge * edge / 6, 1e-12 * m);
+  }
+  EXPECT_GT(heaviest / lightest, 3);
+}
+
+}  // namespace
+}  // namespace tem
