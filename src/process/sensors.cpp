@@ -22,6 +22,7 @@ void accumulate_sensors(const Model& model, const std::vector<BodyState>& before
     SensorTotals& t = state.sensors[k];
     if (s.type == SensorType::plane) {
       for (size_t b = 0; b < model.bodies.size() && b < before.size(); ++b) {
+        if (model.bodies[b].driven()) continue;  // the flow is of free bodies
         const bool was = s.normal.dot(before[b].x - s.point) >= 0;
         const bool is = s.normal.dot(state.bodies[b].x - s.point) >= 0;
         if (was == is) continue;
@@ -62,7 +63,8 @@ std::vector<SensorReading> take_sensor_readings(const Model& model, State& state
         break;
       case SensorType::region:
         for (size_t b = 0; b < model.bodies.size(); ++b) {
-          if (!s.region.contains(state.bodies[b].x)) continue;
+          // The contents are free bodies: a bin's own centre lies inside its hollow.
+          if (model.bodies[b].driven() || !s.region.contains(state.bodies[b].x)) continue;
           ++r.count;
           r.mass += model.bodies[b].inertia.mass;
         }

@@ -1,9 +1,11 @@
 // Sensors (scene key `sensors`, sensors.csv): what a user of a process measures while it runs.
-//   plane:  net count and mass of bodies whose centre of mass crossed the plane along its normal
-//           since the start (crossing back counts -1);
+//   plane:  net count and mass of free bodies whose centre of mass crossed the plane along its
+//           normal since the start (crossing back counts -1);
 //   force:  the contact force and torque (about the world origin) on the named bodies, the mean
 //           over the steps since the sensor's last output row;
-//   region: count and mass of bodies whose centre of mass is inside, at the row's time.
+//   region: count and mass of free bodies whose centre of mass is inside, at the row's time.
+// Fixed bodies and bodies with a prescribed motion are the apparatus, not its contents: plane
+// and region sensors do not count them (a bin's centre of mass lies inside its own hollow).
 // What accumulates between rows is part of the State, so a resumed run reads the same.
 #pragma once
 
