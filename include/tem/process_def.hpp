@@ -49,6 +49,10 @@ struct MotionDef {
   Real start = 0;
   Real end = std::numeric_limits<Real>::infinity();
   std::optional<OscillationDef> oscillation;
+  // A conveyor belt's surface: inside the window the body's surface slides at this velocity
+  // (world axes) where it touches others, along each contact's tangent plane, while the body
+  // itself stays where its other motion puts it (a belt that never runs off its rollers).
+  std::optional<Vec3> surface_velocity;
 };
 
 // A copy's size factor, uniform in [min, max].

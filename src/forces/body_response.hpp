@@ -42,6 +42,15 @@ inline Vec3 material_point_velocity(const Model& model, const State& state, int 
   return s.v + s.angular_velocity_world().cross(p - s.x);
 }
 
+// The velocity at which body `body`'s surface slides at time t (a conveyor belt's
+// `motion.surface_velocity` inside its window), zero for walls and every other body.
+inline Vec3 surface_velocity(const Model& model, int body, Real t) {
+  if (body < 0) return Vec3::Zero();
+  const std::optional<MotionDef>& m = model.bodies[body].motion;
+  if (!m || !m->surface_velocity || t < m->start || !(t < m->end)) return Vec3::Zero();
+  return *m->surface_velocity;
+}
+
 // Adds a contact force `on_b` acting at `at` (and a pure moment) to body B, and their opposites
 // to body A, as forces and torques about the centres of mass `centres`; walls (body -1) take
 // nothing. Fixed and driven bodies take theirs too (force sensors read them; the integration

@@ -45,10 +45,16 @@ void start_velocities(const Model& model, const State& state,
     p.normal = c.normal;
     p.tangent1 = c.tangent1;
     p.tangent2 = c.tangent2;
+    // A belt's sliding surface (motion.surface_velocity) slides past the patch: it adds to the
+    // slip that friction answers, not to the approach (its normal part is the belt's to keep
+    // out: only its tangential part acts).
+    const Vec3 surface = surface_velocity(model, c.body_b, state.time) -
+                         surface_velocity(model, c.body_a, state.time);
+    p.surface_slip = Vec3(p.tangent1.dot(surface), p.tangent2.dot(surface), 0);
     const Vec3 dv = material_point_velocity(model, state, c.body_b, p.centre) -
                     material_point_velocity(model, state, c.body_a, p.centre);
     const Vec3 dw = start_spin(model, state, c.body_b) - start_spin(model, state, c.body_a);
-    p.start_slip = Vec3(p.tangent1.dot(dv), p.tangent2.dot(dv), p.normal.dot(dw));
+    p.start_slip = Vec3(p.tangent1.dot(dv), p.tangent2.dot(dv), p.normal.dot(dw)) + p.surface_slip;
     const PairCoefficients& k = contact_coefficients(model, c.body_a, c.body_b, c.wall);
     p.friction = k.friction;
     p.restitution = k.restitution;

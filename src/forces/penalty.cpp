@@ -118,8 +118,11 @@ void penalty_forces(const Model& model, const State& state,
     i = last;
     // Tangential: the patch's spring stretches with the slip at its centre; at the Coulomb
     // limit it slides.
+    // A belt's sliding surface (motion.surface_velocity) adds its tangential part.
     const Vec3 u = material_point_velocity(model, state, p.body_b, p.point) -
-                   material_point_velocity(model, state, p.body_a, p.point);
+                   material_point_velocity(model, state, p.body_a, p.point) +
+                   surface_velocity(model, p.body_b, state.time) -
+                   surface_velocity(model, p.body_a, state.time);
     const Vec3 slip = u - u.dot(n) * n;
     const Real kt = hertz ? c.tangential_stiffness * std::sqrt(depth) : c.tangential_stiffness;
     const Real ct = c.stiffness > 0 ? c.damping * c.tangential_stiffness / c.stiffness : 0;

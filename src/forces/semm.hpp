@@ -61,6 +61,10 @@ struct PatchFriction {
   // each step from the Model and the State, so not part of the contact memory (checkpoint,
   // messages), unlike the impulses above.
   Real friction = 0, restitution = 0, rolling_resistance = 0, rolling_radius = 0;
+  // Slip that sliding surfaces (conveyor belts, motion.surface_velocity) add along tangent1 and
+  // tangent2 (B's minus A's; z 0), included in start_slip and in every slip the solvers
+  // measure. Derived each step, not contact memory.
+  Vec3 surface_slip = Vec3::Zero();
 };
 
 class SolverSync;  // solver_sync.hpp

@@ -79,6 +79,7 @@ void build_patch(const std::vector<ContactPoint>& points, const std::vector<Real
   const Real k_twist = p.normal.dot(f.turn_a_n + f.turn_b_n);
   f.inverse_k_twist = k_twist > 0 ? 1 / k_twist : 0;
   f.start_slip = p.start_slip;
+  f.surface_slip = p.surface_slip;
   f.t1 = p.t1;
   f.t2 = p.t2;
   f.twist = p.twist;
@@ -152,7 +153,8 @@ inline Vec3 slip(const Memory& m, const Memory::FrictionRow& f) {
                   f.arm_a_x_t1.dot(m.angular_velocity[f.a]),
               f.tangent2.dot(dv) + f.arm_b_x_t2.dot(m.angular_velocity[f.b]) -
                   f.arm_a_x_t2.dot(m.angular_velocity[f.a]),
-              f.normal.dot(m.angular_velocity[f.b] - m.angular_velocity[f.a]));
+              f.normal.dot(m.angular_velocity[f.b] - m.angular_velocity[f.a])) +
+         f.surface_slip;
 }
 
 // One patch: its normal rows, each clamped at zero, then its friction within its Coulomb limits
@@ -285,7 +287,8 @@ inline Vec3 row_slip(const Memory::FrictionRow& f, const std::vector<Vec3>& v,
   const Vec3 dv = v[f.b] - v[f.a];
   return Vec3(f.tangent1.dot(dv) + f.arm_b_x_t1.dot(w[f.b]) - f.arm_a_x_t1.dot(w[f.a]),
               f.tangent2.dot(dv) + f.arm_b_x_t2.dot(w[f.b]) - f.arm_a_x_t2.dot(w[f.a]),
-              f.normal.dot(w[f.b] - w[f.a]));
+              f.normal.dot(w[f.b] - w[f.a])) +
+         f.surface_slip;
 }
 
 // The energy the impulses add over the step, and the scale that takes it back to none.

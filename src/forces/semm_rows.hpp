@@ -42,6 +42,7 @@ struct RowSolverMemory {
     Eigen::Matrix<Real, 2, 2> inverse_k_slip;
     Real inverse_k_twist = 0;  // 0: no twist row (both sides without rotation)
     Vec3 start_slip;
+    Vec3 surface_slip;  // what sliding surfaces add to the slip (PatchFriction::surface_slip)
     Real t1 = 0, t2 = 0, twist = 0;
     Real mu = 0;       // the patch's friction coefficient
     int rolling = -1;  // its rolling row in `rolling`, or -1: none

@@ -31,7 +31,7 @@ using json::Reader;
 const KeyList kMaterialKeys = {"friction", "restitution", "rolling_resistance"};
 const KeyList kPairKeys = {"materials", "friction", "restitution", "rolling_resistance"};
 const KeyList kMotionKeys = {"velocity", "angular_velocity", "center", "start",
-                             "end",      "oscillation"};
+                             "end",      "oscillation",      "surface_velocity"};
 const KeyList kOscillationKeys = {"amplitude", "frequency"};
 const KeyList kScaleKeys = {"min", "max"};
 const KeyList kRegionKeys = {"min", "max"};
@@ -255,6 +255,8 @@ void ProcessReader::read_motion(const Json& j, const std::string& path, MotionDe
   r_.read_vec3(j, path, "angular_velocity", &motion->angular_velocity);
   Vec3 center = Vec3::Zero();
   if (r_.read_vec3(j, path, "center", &center)) motion->center = center;
+  Vec3 surface = Vec3::Zero();
+  if (r_.read_vec3(j, path, "surface_velocity", &surface)) motion->surface_velocity = surface;
   const bool start_ok = r_.read_number(j, path, "start", &motion->start, Bound::non_negative) ||
                         !Reader::get(j, "start");
   Real end = 0;

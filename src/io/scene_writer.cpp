@@ -184,6 +184,7 @@ Json motion_to_json(const MotionDef& motion) {
   j["velocity"] = vec3(motion.velocity);
   j["angular_velocity"] = vec3(motion.angular_velocity);
   if (motion.center) j["center"] = vec3(*motion.center);
+  if (motion.surface_velocity) j["surface_velocity"] = vec3(*motion.surface_velocity);
   j["start"] = motion.start;
   if (std::isfinite(motion.end)) j["end"] = motion.end;
   if (motion.oscillation) {

@@ -45,7 +45,12 @@ Real driven_work(const Model& model, const State& state, const ContactForces& fo
     const BodyState& s = state.bodies[b];
     work -= forces.force[b].dot(s.v) + forces.torque[b].dot(s.angular_velocity_world());
   }
-  return work * model.scene.time_step;
+  work *= model.scene.time_step;
+  // Sliding surfaces (conveyor belts): the friction impulse j on B (-j on A) against the
+  // surfaces' relative slide does -j.(s_B - s_A) on the others.
+  for (const PatchFriction& p : forces.friction)
+    work -= p.t1 * p.surface_slip.x() + p.t2 * p.surface_slip.y();
+  return work;
 }
 
 }  // namespace
@@ -140,9 +145,10 @@ Energies system_energies(const Model& model, const State& state, SolverSync* syn
   Energies e;
   for (size_t i = 0; i < model.bodies.size(); ++i) {
     if (sync && !sync->owns(static_cast<int>(i))) continue;
-    // Bodies with a prescribed motion are driven from outside: their energy is the driver's
-    // (State::driven_work counts what they give the others).
-    if (model.bodies[i].motion) continue;
+    // Fixed bodies and bodies with a prescribed motion are driven from outside: their energy
+    // is the driver's (State::driven_work counts what moving ones give the others), and a gate
+    // taken away must not change the energy of what is left.
+    if (model.bodies[i].driven()) continue;
     const RigidInertia& inertia = model.bodies[i].inertia;
     e.kinetic += kinetic_energy(inertia, state.bodies[i]);
     e.potential += potential_energy(inertia, model.scene.gravity, state.bodies[i]);

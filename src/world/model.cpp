@@ -75,6 +75,17 @@ Body build_body(const BodyDef& def, Model& model, Real scale) {
   body.start_angular_velocity = def.angular_velocity;
   body.material = material_index(model, def.material);
   body.motion = def.motion;
+  if (def.motion && def.motion->surface_velocity) {
+    const ContactDef& c = model.scene.contact;
+    if (c.model == ContactModel::semm_paper)
+      throw SceneError(def.path + ".motion.surface_velocity",
+                       "a sliding surface moves bodies by friction, which contact.model "
+                       "\"semm-paper\" does not have; use \"semm\" or \"penalty\"");
+    if (c.model == ContactModel::semm && c.solver != ContactSolver::rows)
+      throw SceneError(def.path + ".motion.surface_velocity",
+                       "a sliding surface is solved by contact.solver \"rows\" (the default), "
+                       "not \"blocks\"");
+  }
   if (def.removed_at) body.removed_at = *def.removed_at;
 
   std::vector<PlacedMass> parts;
