@@ -3,7 +3,7 @@
 
 usage: /usr/bin/python3 tools/beverloo.py [--tem build/release/tem] [--orifices 1.75 2 2.25 2.5]
            [--work /tmp/beverloo] [--count 2000] [--max-duration 1.6] [--stop-fraction 0.6]
-           [--reuse] [--figures docs/figures/processes_silo]
+           [--window 0.05 0.35] [--reuse] [--figures docs/figures/processes_silo]
 
 For each orifice width D it writes a variant of the silo scene to WORK/silo_D<D>.json, runs it
 (`nice -n 5 TEM run ... --threads 1`, one run at a time) and stops the run (SIGTERM: TEM writes
@@ -17,8 +17,9 @@ What it computes, from WORK/D<D>/sensors.csv:
           over the rows of the 0.05 s before the gate opens, divided by the box's volume;
   M0, H0  the mass in the silo (`contents`) when the gate opens, and the fill height M0/(rho_b A);
   W       the discharge rate: least-squares slope of the orifice sensor's cumulative mass against
-          time over the steady window [t_gate + 0.1 s, the time the discharged mass reaches
-          half of M0] (or the run's end); W1, W2 the slopes over the window's first and second
+          time over the window from the time 5 % of M0 has passed (at least 0.1 s after the
+          gate) to the time 35 % has (--window 0.05 0.35; or the run's end), the same range of
+          bed heights for every orifice; W1, W2 the slopes over the window's first and second
           halves (steadiness while the fill height falls); R^2 of the fit;
   Beverloo  a straight line W^(2/5) = a D + b through the orifices that did not clog. For a
           square orifice of side D the law with the orifice's area and hydraulic diameter
@@ -122,16 +123,20 @@ def fit_line(x, y):
     return a, b, r2, se
 
 
-def analyse(run_dir, gate, core_volume, area):
+def analyse(run_dir, gate, core_volume, area, window):
     s = read_sensors(os.path.join(run_dir, "sensors.csv"))
     core, cont, orf = s["core"], s["contents"], s["orifice"]
     before = (core["time"] > gate - 0.05 - 1e-9) & (core["time"] < gate - 1e-9)
     rho_b = core["mass"][before].mean() / core_volume
     m0 = cont["mass"][np.searchsorted(cont["time"], gate - 1e-9) - 1]
     t, m = orf["time"], orf["mass"]
-    start = gate + 0.1
-    half = np.nonzero(m >= 0.5 * m0)[0]
-    end = t[half[0]] if len(half) else t[-1]
+    # The window: from 0.1 s after the gate and lo of the fill discharged, to hi of it
+    # discharged (or the run's end): the same range of bed heights for every orifice.
+    lo, hi = window
+    first = np.nonzero(m >= lo * m0)[0]
+    start = max(gate + 0.1, t[first[0]] if len(first) else gate + 0.1)
+    last_ = np.nonzero(m >= hi * m0)[0]
+    end = t[last_[0]] if len(last_) else t[-1]
     w = (t >= start - 1e-9) & (t <= end + 1e-9)
     r = {"rho_b": rho_b, "m0": m0, "h0": m0 / (rho_b * area), "t_end": t[-1],
          "start": start, "end": end, "discharged": m[-1], "t": t, "m": m}
@@ -160,6 +165,8 @@ def main():
     ap.add_argument("--gate", type=float, default=silo_scene.GATE)
     ap.add_argument("--max-duration", type=float, default=1.6)
     ap.add_argument("--stop-fraction", type=float, default=0.6)
+    ap.add_argument("--window", type=float, nargs=2, default=[0.05, 0.35],
+                    help="fractions of the settled fill discharged that bound the fit window")
     ap.add_argument("--reuse", action="store_true")
     ap.add_argument("--figures", default="docs/figures/processes_silo")
     a = ap.parse_args()
@@ -181,7 +188,7 @@ def main():
                   file=sys.stderr)
         core = silo_scene.CORE
         vol = np.prod(np.subtract(core["max"], core["min"]))
-        results[D] = analyse(out, a.gate, vol, silo_scene.WIDTH ** 2)
+        results[D] = analyse(out, a.gate, vol, silo_scene.WIDTH ** 2, a.window)
 
     v1 = grain_volume(tem, a.work)
     s3 = (1.1 ** 4 - 0.9 ** 4) / (4 * 0.2)  # E[s^3], s uniform in [0.9, 1.1]
@@ -225,17 +232,15 @@ def main():
         os.makedirs(os.path.dirname(a.figures) or ".", exist_ok=True)
         fig, ax = plt.subplots(figsize=(6, 4))
         for D, r in results.items():
-            line, = ax.plot(r["t"] - a.gate, r["m"], label=f"D = {D:g} cm")
+            label = f"D = {D:g} cm" + (f", W = {r['W']:.0f} g/s" if np.isfinite(r["W"]) else "")
+            line, = ax.plot(r["t"] - a.gate, r["m"], label=label)
             if np.isfinite(r["W"]):
                 tt = np.array([r["start"], r["end"]])
-                ax.plot(tt - a.gate, r["W"] * tt + r["b"], "--", color=line.get_color(), lw=1)
-                ax.annotate(f"{r['W']:.0f} g/s", (r["end"] - a.gate, r["W"] * r["end"] + r["b"]),
-                            textcoords="offset points", xytext=(4, -4), fontsize=8,
-                            color=line.get_color())
+                ax.plot(tt - a.gate, r["W"] * tt + r["b"], "k--", lw=1)
         ax.set_xlim(left=-0.05)
         ax.set_xlabel("time after the gate opened (s)")
         ax.set_ylabel("discharged mass (g)")
-        ax.set_title("Silo discharge (dashed: fitted steady rate)", fontsize=10)
+        ax.set_title("Silo discharge (dashed: the rate fitted over the window)", fontsize=10)
         ax.legend(fontsize=8)
         ax.grid(alpha=0.3)
         fig.tight_layout()
