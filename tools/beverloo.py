@@ -2,7 +2,7 @@
 """Discharge of the flat-bottomed silo (tools/silo_scene.py) against the Beverloo law.
 
 usage: /usr/bin/python3 tools/beverloo.py [--tem build/release/tem] [--orifices 1.75 2 2.25 2.5]
-           [--work /tmp/beverloo] [--count 2000] [--max-duration 1.6] [--stop-fraction 0.6]
+           [--work /tmp/beverloo] [--count 2000] [--max-duration 1.3] [--stop-fraction 0.6]
            [--window 0.05 0.35] [--reuse] [--figures docs/figures/processes_silo]
 
 For each orifice width D it writes a variant of the silo scene to WORK/silo_D<D>.json, runs it
@@ -163,7 +163,7 @@ def main():
     ap.add_argument("--work", default="/tmp/beverloo")
     ap.add_argument("--count", type=int, default=silo_scene.COUNT)
     ap.add_argument("--gate", type=float, default=silo_scene.GATE)
-    ap.add_argument("--max-duration", type=float, default=1.6)
+    ap.add_argument("--max-duration", type=float, default=1.3)
     ap.add_argument("--stop-fraction", type=float, default=0.6)
     ap.add_argument("--window", type=float, nargs=2, default=[0.05, 0.35],
                     help="fractions of the settled fill discharged that bound the fit window")
