@@ -1,0 +1,228 @@
+#!/usr/bin/python3
+"""Angle of repose of a poured heap (scenes/processes/heap.json) against grain friction and
+rolling resistance.
+
+For each (friction, rolling_resistance) of the grid, writes a copy of the scene with the grain
+material changed (`materials.grain`), runs `tem run` on it (one at a time, one thread), and
+measures from bodies.csv:
+
+  angle     the angle of repose at the end of the pour (T_POUR + SETTLE s) and 1 s later.
+            Method: the grains present (centres above the base) are put in cells of a polar
+            grid about the heap's axis (the vertical through the grains' mean x, y): radial bins
+            of one grain size d and 12 azimuthal sectors. The highest centre of each cell is a
+            surface grain. R, the heap's radius, is the 95th percentile of the grains' distance
+            from the axis. The angle is atan of minus the slope of a least-squares line
+            z = a - r tan(theta) through the surface grains with 0.25 R <= r <= 0.85 R (the
+            flanks: the peak and the toe left out). The spread of the 12 sectors' own fits
+            (standard deviation) is printed with it.
+  creep     the largest speed of any grain (and the largest |omega| * d/2) over the second
+            after the end of the pour, from every row of bodies.csv (output.interval 0.01 s);
+            and the largest speed at the last row.
+  lost      grains that rolled off the base (removed.csv).
+
+Writes a table (stdout and, with --table, a Markdown file), results as JSON (--json), and the
+figure docs/figures/processes_heap_angles.png (with --figure).
+
+Usage:
+  /usr/bin/python3 tools/repose.py [--tem /tmp/tem-repose] [--work /tmp/repose]
+      [--friction 0.2 0.4 0.7] [--rolling 0 0.05 0.15] [--only-analyse]
+      [--json FILE] [--table FILE] [--figure FILE] [--tight]
+
+--tight runs with contact.tolerance 1e-6 and max_sweeps 200 (the solver-convergence check).
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SCENE = os.path.join(HERE, "..", "scenes", "processes", "heap.json")
+
+SETTLE = 0.7   # s after the inlet's last copy before "the end of the pour"
+HOLD = 1.0     # s the heap must keep its angle
+
+
+def pour_times(scene):
+    inlet = scene["inlets"][0]
+    t_stop = inlet.get("start", 0.0) + inlet["count"] / inlet["rate"]
+    return t_stop, t_stop + SETTLE, t_stop + SETTLE + HOLD
+
+
+def grain_size(scene):
+    pts = np.array(scene["inlets"][0]["body"]["shape"]["points"])
+    return float(np.mean(pts.max(axis=0) - pts.min(axis=0)))
+
+
+def read_bodies(path):
+    names, cols = [], []
+    with open(path) as f:
+        reader = csv.reader(f)
+        header = next(reader)
+        for row in reader:
+            names.append(row[1])
+            cols.append([float(row[i]) for i in (0, 2, 3, 4, 9, 10, 11, 12, 13, 14)])
+    a = np.array(cols)
+    grain = np.array([n.startswith("grain_") for n in names])
+    keys = ["t", "x", "y", "z", "vx", "vy", "vz", "wx", "wy", "wz"]
+    return {k: a[grain, i] for i, k in enumerate(keys)}
+
+
+def angle_at(b, t, d, sectors=12):
+    """Angle of repose (deg) of the heap at row time t, its spread over sectors, R, height."""
+    m = (np.abs(b["t"] - t) < 1e-7) & (b["z"] > 0.0)
+    x, y, z = b["x"][m], b["y"][m], b["z"][m]
+    cx, cy = x.mean(), y.mean()
+    r = np.hypot(x - cx, y - cy)
+    phi = np.arctan2(y - cy, x - cx)
+    R = np.percentile(r, 95)
+    rb = np.floor(r / d).astype(int)
+    sb = np.floor((phi + math.pi) / (2 * math.pi) * sectors).astype(int) % sectors
+    top = {}
+    for i in range(len(z)):
+        k = (rb[i], sb[i])
+        if k not in top or z[i] > z[top[k]]:
+            top[k] = i
+    idx = np.array(sorted(top.values()))
+    rs, zs, ss = r[idx], z[idx], sb[idx]
+    flank = (rs >= 0.25 * R) & (rs <= 0.85 * R)
+    slope = np.polyfit(rs[flank], zs[flank], 1)[0]
+    per = []
+    for s in range(sectors):
+        k = flank & (ss == s)
+        if k.sum() >= 3:
+            per.append(math.degrees(math.atan(-np.polyfit(rs[k], zs[k], 1)[0])))
+    return (math.degrees(math.atan(-slope)), float(np.std(per)), float(R), float(z.max()),
+            int(m.sum()), (rs, zs, flank))
+
+
+def creep(b, t0, t1, d):
+    m = (b["t"] >= t0 - 1e-7) & (b["t"] <= t1 + 1e-7)
+    v = np.sqrt(b["vx"] ** 2 + b["vy"] ** 2 + b["vz"] ** 2)
+    w = np.sqrt(b["wx"] ** 2 + b["wy"] ** 2 + b["wz"] ** 2) * d / 2
+    last = np.abs(b["t"] - t1) < 1e-7
+    return float(v[m].max()), float(w[m].max()), float(v[last].max())
+
+
+def analyse(run_dir, scene):
+    d = grain_size(scene)
+    t_stop, t_end, t_hold = pour_times(scene)
+    b = read_bodies(os.path.join(run_dir, "bodies.csv"))
+    a0 = angle_at(b, t_end, d)
+    a1 = angle_at(b, t_hold, d)
+    vmax, wmax, vlast = creep(b, t_end, t_hold, d)
+    lost = 0
+    rem = os.path.join(run_dir, "removed.csv")
+    if os.path.exists(rem):
+        lost = sum(1 for _ in open(rem)) - 1
+    depth = 0.0
+    with open(os.path.join(run_dir, "energy.csv")) as f:
+        for row in csv.DictReader(f):
+            depth = max(depth, float(row["max_depth"]))
+    return {"angle_end": a0[0], "spread_end": a0[1], "angle_hold": a1[0], "spread_hold": a1[1],
+            "R": a1[2], "height": a1[3], "grains": a1[4], "lost": lost,
+            "vmax_hold": vmax, "wmax_hold": wmax, "v_last": vlast, "max_depth": depth,
+            "t_end": t_end, "t_hold": t_hold}
+
+
+def run_case(args, mu, mur, tight=False):
+    scene = json.load(open(SCENE))
+    scene["materials"]["grain"]["friction"] = mu
+    scene["materials"]["grain"]["rolling_resistance"] = mur
+    _, _, t_hold = pour_times(scene)
+    scene["duration"] = t_hold
+    tag = f"mu{mu:g}_mur{mur:g}" + ("_tight" if tight else "")
+    if tight:
+        scene["contact"]["tolerance"] = 1e-6
+        scene["contact"]["max_sweeps"] = 200
+    out = os.path.join(args.work, tag)
+    path = os.path.join(args.work, tag + ".json")
+    if not args.only_analyse:
+        os.makedirs(args.work, exist_ok=True)
+        json.dump(scene, open(path, "w"), indent=1)
+        t0 = time.time()
+        with open(os.path.join(args.work, tag + ".log"), "w") as log:
+            subprocess.run(["nice", "-n", "5", args.tem, "run", path, "--out", out,
+                            "--threads", "1"], check=True, stdout=log, stderr=subprocess.STDOUT)
+        print(f"  {tag}: {time.time() - t0:.0f} s wall", file=sys.stderr)
+    res = analyse(out, scene)
+    res.update({"friction": mu, "rolling_resistance": mur, "tight": tight, "run": out})
+    logf = os.path.join(args.work, tag + ".log")
+    if os.path.exists(logf):
+        for line in open(logf):
+            if line.startswith("tem run:") and "steps/s" in line:
+                res["log"] = line.strip()
+            if "contact solver" in line:
+                res["solver"] = line.strip()
+    return res
+
+
+def figure(results, path, scene):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(5.5, 4))
+    rolls = sorted({r["rolling_resistance"] for r in results if not r["tight"]})
+    mus = np.linspace(0.05, 1.0, 100)
+    for mur in rolls:
+        rs = sorted((r for r in results if r["rolling_resistance"] == mur and not r["tight"]),
+                    key=lambda r: r["friction"])
+        mu = [r["friction"] for r in rs]
+        ax.errorbar(mu, [r["angle_end"] for r in rs], yerr=[r["spread_end"] for r in rs],
+                    marker="o", capsize=3, label=f"$\\mu_r$ = {mur:g}, end of pour")
+        ax.plot(mu, [r["angle_hold"] for r in rs], "k+", ms=9)
+    ax.plot([], [], "k+", label="1 s later")
+    ax.set_xlabel("grain friction $\\mu_s$ (grain-grain)")
+    ax.set_ylabel("angle of repose (deg)")
+    ax.set_title("Poured heap of angular grains (scenes/processes/heap.json)", fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--tem", default="/tmp/tem-repose")
+    p.add_argument("--work", default="/tmp/repose")
+    p.add_argument("--friction", type=float, nargs="+", default=[0.2, 0.4, 0.7])
+    p.add_argument("--rolling", type=float, nargs="+", default=[0.0, 0.05, 0.15])
+    p.add_argument("--only-analyse", action="store_true", help="reuse the runs in --work")
+    p.add_argument("--tight", action="store_true",
+                   help="tolerance 1e-6, max_sweeps 200 (each case of the grid)")
+    p.add_argument("--json")
+    p.add_argument("--table")
+    p.add_argument("--figure")
+    args = p.parse_args()
+    scene = json.load(open(SCENE))
+    results = []
+    for mur in args.rolling:
+        for mu in args.friction:
+            results.append(run_case(args, mu, mur, args.tight))
+    head = ("| mu_s | mu_r | angle end of pour (deg) | angle 1 s later (deg) | R (cm) | height (cm) "
+            "| grains (lost) | max grain speed over 1 s (cm/s) | max |w| d/2 (cm/s) "
+            "| speed at the end (cm/s) |")
+    lines = [head, "|" + "---|" * 10]
+    for r in results:
+        lines.append(
+            f"| {r['friction']:g} | {r['rolling_resistance']:g}"
+            f"{' (tight)' if r['tight'] else ''} | {r['angle_end']:.1f} ± {r['spread_end']:.1f} "
+            f"| {r['angle_hold']:.1f} ± {r['spread_hold']:.1f} | {r['R']:.2f} | {r['height']:.2f} "
+            f"| {r['grains']} ({r['lost']}) | {r['vmax_hold']:.2g} | {r['wmax_hold']:.2g} "
+            f"| {r['v_last']:.2g} |")
+    print("\n".join(lines))
+    if args.table:
+        open(args.table, "w").write("\n".join(lines) + "\n")
+    if args.json:
+        json.dump(results, open(args.json, "w"), indent=1)
+    if args.figure:
+        figure(results, args.figure, scene)
+
+
+if __name__ == "__main__":
+    main()
