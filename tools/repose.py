@@ -19,6 +19,8 @@ measures from bodies.csv:
   creep     the largest speed of any grain (and the largest |omega| * d/2) over the second
             after the end of the pour, from every row of bodies.csv (output.interval 0.01 s);
             and the largest speed at the last row.
+  cone      atan(H / R), H the highest grain centre, R as above: a cruder second measure of
+            the same angle (a cone through the top grain and the toe).
   lost      grains that rolled off the base (removed.csv).
 
 Writes a table (stdout and, with --table, a Markdown file), results as JSON (--json), and the
@@ -163,19 +165,28 @@ def analyse(run_dir, scene):
         for row in csv.DictReader(f):
             depth = max(depth, float(row["max_depth"]))
     return {"angle_end": a0[0], "spread_end": a0[1], "angle_hold": a1[0], "spread_hold": a1[1],
-            "R": a1[2], "height": a1[3], "grains": a1[4], "lost": lost,
+            "R": a1[2], "height": a1[3], "cone": math.degrees(math.atan(a1[3] / a1[2])), "grains": a1[4], "lost": lost,
             "vmax_hold": vmax, "wmax_hold": wmax, "v_last": vlast,
             "grains_over_1e-3": fast, "drift": drift, "max_depth": depth,
             "t_end": t_end, "t_hold": t_hold}
 
 
+def last_time(run_dir):
+    with open(os.path.join(run_dir, "energy.csv")) as f:
+        return float(f.readlines()[-1].split(",")[0])
+
+
 def run_case(args, mu, mur, tight=False):
     scene = json.load(open(SCENE))
+    if args.seed is not None:
+        scene["inlets"][0]["seed"] = args.seed
     scene["materials"]["grain"]["friction"] = mu
     scene["materials"]["grain"]["rolling_resistance"] = mur
     t_stop, _, _ = pour_times(scene)
     scene["duration"] = round(1.3 * t_stop + SETTLE + HOLD, 6)   # extended below if need be
     tag = f"mu{mu:g}_mur{mur:g}" + ("_tight" if tight else "")
+    if args.seed is not None:
+        tag += f"_seed{args.seed}"
     if tight:
         scene["contact"]["tolerance"] = 1e-6
         scene["contact"]["max_sweeps"] = 200
@@ -196,20 +207,26 @@ def run_case(args, mu, mur, tight=False):
                 if need <= scene["duration"] + 1e-9:
                     break
                 scene["duration"] = round(need, 6)   # the inlet came late: run on (--resume)
-            json.dump(scene, open(path, "w"), indent=1)
-            t0 = time.time()
-            cmd = ["nice", "-n", "5", args.tem, "run", path, "--out", out, "--threads", "1"]
-            if done:
-                cmd.append("--resume")
-            with open(logf, "a") as log:
-                subprocess.run(cmd, check=True, stdout=log, stderr=subprocess.STDOUT)
-            print(f"  {tag}: to t = {scene['duration']:g} s, {time.time() - t0:.0f} s wall",
-                  file=sys.stderr)
+            target = scene["duration"]
+            reached = last_time(out) if done else 0.0
+            while reached < target - 1e-9:   # in pieces of --segment s (each its own process)
+                scene["duration"] = round(min(target, reached + args.segment), 6)
+                json.dump(scene, open(path, "w"), indent=1)
+                t0 = time.time()
+                cmd = ["nice", "-n", "5", args.tem, "run", path, "--out", out, "--threads", "1"]
+                if reached > 0:
+                    cmd.append("--resume")
+                with open(logf, "a") as log:
+                    subprocess.run(cmd, check=True, stdout=log, stderr=subprocess.STDOUT)
+                print(f"  {tag}: to t = {scene['duration']:g} s, {time.time() - t0:.0f} s wall",
+                      file=sys.stderr)
+                reached = scene["duration"]
             done = True
     else:
         scene["duration"] = json.load(open(path))["duration"]
     res = analyse(out, scene)
-    res.update({"friction": mu, "rolling_resistance": mur, "tight": tight, "run": out})
+    res.update({"friction": mu, "rolling_resistance": mur, "tight": tight, "run": out,
+                "seed": scene["inlets"][0]["seed"]})
     if os.path.exists(logf):
         for line in open(logf):
             if line.startswith("tem run:") and "steps/s" in line:
@@ -230,15 +247,17 @@ def figure(results, path, scene):
         rs = sorted((r for r in results if r["rolling_resistance"] == mur and not r["tight"]),
                     key=lambda r: r["friction"])
         mu = [r["friction"] for r in rs]
-        ax.errorbar(mu, [r["angle_end"] for r in rs], yerr=[r["spread_end"] for r in rs],
-                    marker="o", capsize=3, label=f"$\\mu_r$ = {mur:g}, end of pour")
+        e = ax.errorbar(mu, [r["angle_end"] for r in rs], yerr=[r["spread_end"] for r in rs],
+                        marker="o", capsize=3, label=f"$\\mu_r$ = {mur:g}: flank fit")
+        ax.plot(mu, [r["cone"] for r in rs], "s--", mfc="none", color=e[0].get_color(),
+                label=f"$\\mu_r$ = {mur:g}: atan(H/R)")
         ax.plot(mu, [r["angle_hold"] for r in rs], "k+", ms=9)
-    ax.plot([], [], "k+", label="1 s later")
+    ax.plot([], [], "k+", label="flank fit 1 s later")
     ax.set_xlabel("grain friction $\\mu_s$ (grain-grain)")
     ax.set_ylabel("angle of repose (deg)")
     ax.set_title("Poured heap of angular grains (scenes/processes/heap.json)", fontsize=9)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=7, ncol=2)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 
@@ -269,7 +288,7 @@ def side_view(run_dir, scene, path):
     a2.plot(rr, np.polyval(k, rr), "r-", label=f"fit: {ang:.1f} deg")
     a2.set_xlabel("distance from the axis r (cm)")
     a2.set_ylabel("z of surface grains (cm)")
-    a2.legend(fontsize=7)
+    a2.legend(fontsize=7, loc="upper right", framealpha=0.6)
     a2.set_aspect("equal")
     fig.tight_layout()
     fig.savefig(path, dpi=100)
@@ -284,6 +303,9 @@ def main():
     p.add_argument("--only-analyse", action="store_true", help="reuse the runs in --work")
     p.add_argument("--tight", action="store_true",
                    help="tolerance 1e-6, max_sweeps 200 (each case of the grid)")
+    p.add_argument("--segment", type=float, default=1e9,
+                   help="run in pieces of this many simulated seconds (--resume between)")
+    p.add_argument("--seed", type=int, help="the inlet's seed (default: the scene's)")
     p.add_argument("--json")
     p.add_argument("--table")
     p.add_argument("--figure")
@@ -299,15 +321,15 @@ def main():
         for mu in args.friction:
             results.append(run_case(args, mu, mur, args.tight))
     head = ("| mu_s | mu_r | angle end of pour (deg) | angle 1 s later (deg) | R (cm) | height (cm) "
-            "| grains (lost) | max grain speed over 1 s (cm/s) | max |w| d/2 (cm/s) "
+            "| atan(H/R) (deg) | grains (lost) | max grain speed over 1 s (cm/s) | max |w| d/2 (cm/s) "
             "| speed at the end (cm/s) | grains > 1e-3 cm/s | largest drift over 1 s (cm) |")
-    lines = [head, "|" + "---|" * 12]
+    lines = [head, "|" + "---|" * 13]
     for r in results:
         lines.append(
             f"| {r['friction']:g} | {r['rolling_resistance']:g}"
             f"{' (tight)' if r['tight'] else ''} | {r['angle_end']:.1f} ± {r['spread_end']:.1f} "
             f"| {r['angle_hold']:.1f} ± {r['spread_hold']:.1f} | {r['R']:.2f} | {r['height']:.2f} "
-            f"| {r['grains']} ({r['lost']}) | {r['vmax_hold']:.2g} | {r['wmax_hold']:.2g} "
+            f"| {r['cone']:.1f} | {r['grains']} ({r['lost']}) | {r['vmax_hold']:.2g} | {r['wmax_hold']:.2g} "
             f"| {r['v_last']:.2g} | {r['grains_over_1e-3']} | {r['drift']:.2g} |")
     print("\n".join(lines))
     if args.table:
