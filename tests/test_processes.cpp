@@ -427,3 +427,38 @@ TEST(Processes, FillDrawsASizeFactorPerCopy) {
 
 }  // namespace
 }  // namespace tem
+
+namespace tem {
+namespace {
+
+// A conveyor belt that stays where it is while its surface slides (motion.surface_velocity):
+// the block speeds up at mu g to the surface's speed, rides to the belt's end and falls off it.
+TEST(Processes, SlidingSurfaceCarriesABlockToTheBeltsEndAndOff) {
+  Simulation sim = Simulation::load(scene_path("surface_belt.json"));
+  const int block = sim.body_index("block"), belt = sim.body_index("belt");
+  const Real mu = 0.25, v = 20, t_stick = v / (mu * kG);
+  const Vec3 belt_at = sim.position(belt);
+  Real reached = -1;
+  while (sim.time() < 0.3 - 1e-12) {
+    sim.step();
+    const Real vx = sim.velocity(block).x();
+    if (sim.time() < t_stick - 2 * sim.time_step()) {
+      EXPECT_NEAR(vx, mu * kG * sim.time(), 1e-6 * v) << "t = " << sim.time();
+    }
+    if (reached < 0 && vx > v * (1 - 1e-9)) reached = sim.time();
+  }
+  EXPECT_NEAR(reached, t_stick, 2 * sim.time_step());
+  EXPECT_NEAR(sim.velocity(block).x(), v, 1e-9 * v);
+  EXPECT_NEAR(sim.position(block).z(), 0.5, 1e-3);  // riding on top, not pushed into it
+  // The belt's work: the block's kinetic energy and as much again lost to sliding.
+  const Real m = sim.mass(block);
+  EXPECT_NEAR(sim.energies().driven_work, m * v * v, 2e-3 * m * v * v);
+  // Past the end (x = 5) it falls: after 0.8 s it is below the belt's top, beyond its end.
+  sim.step(1000);
+  EXPECT_GT(sim.position(block).x(), 5);
+  EXPECT_LT(sim.position(block).z(), 0);
+  EXPECT_EQ(sim.position(belt), belt_at);  // the belt itself never moved
+}
+
+}  // namespace
+}  // namespace tem
