@@ -190,7 +190,8 @@ TEST(Cli, CheckReportsGeometricProblemsWithTheirPath) {
       {"coplanar_points.json", "bodies[0].shape"},
       {"interior_point.json", "bodies[0].shape"},
       {"ring_nonconvex_blocks.json", "bodies[0].shape"},
-      {"fill_too_dense.json", "fill[0].count: only "}};
+      {"fill_too_dense.json", "fill[0].count: only "},
+      {"inlet_too_small.json", "inlets[0].region: is too small for one copy"}};
   for (const auto& [file, where] : cases) {
     SCOPED_TRACE(file);
     const std::string scene = kSource + "/tests/scenes/bad_geometry/" + file;

@@ -29,8 +29,15 @@ int check_command(const std::string& scene_file) {
     std::fprintf(stderr, "%s: warning: %s\n", scene_file.c_str(), describe(*model, o).c_str());
   const SceneDef& scene = model->scene;
   const double steps = std::round(scene.duration / scene.time_step);
-  std::printf("%s: ok (%s, %s, %s; %g s in %.0f steps of %g s)\n", scene_file.c_str(),
-              plural(model->bodies.size(), "body", "bodies").c_str(),
+  long long inlet_copies = 0;
+  for (const InletDef& inlet : scene.inlets) inlet_copies += inlet.count;
+  const std::string inlets =
+      scene.inlets.empty() ? ""
+                           : ", " + plural(static_cast<std::size_t>(inlet_copies), "body", "bodies") +
+                                 " to come from " +
+                                 plural(scene.inlets.size(), "inlet", "inlets");
+  std::printf("%s: ok (%s%s, %s, %s; %g s in %.0f steps of %g s)\n", scene_file.c_str(),
+              plural(model->bodies.size(), "body", "bodies").c_str(), inlets.c_str(),
               plural(model->blocks.size(), "block", "blocks").c_str(),
               plural(model->walls.size(), "wall", "walls").c_str(), scene.duration, steps,
               scene.time_step);

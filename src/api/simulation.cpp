@@ -71,11 +71,7 @@ Simulation::Impl::Impl(Model m) : model(std::move(m)) {
   workspace.loads.torque.assign(n, Vec3::Zero());
   if (population_changes(model.scene)) initial_bodies = model.bodies;
   reserve_capacity();
-  try {
-    start_population(model, state, links(), removed);
-  } catch (const SceneError& e) {
-    throw SceneLoadError(format_problem(model.scene.source, {e.path(), e.reason()}));
-  }
+  start_population(model, state, links(), removed);
   refresh_views();
 }
 

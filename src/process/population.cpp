@@ -235,19 +235,6 @@ size_t population_capacity(const Model& model) {
 
 void start_population(Model& model, State& state, const PopulationLinks& links,
                       std::vector<RemovedBody>& removed) {
-  for (size_t j = 0; j < model.scene.inlets.size(); ++j) {
-    const InletDef& inlet = model.scene.inlets[j];
-    const Real largest = inlet.body.scale ? inlet.body.scale->max : 1;
-    const Real radius = largest * body_size(model, model.inlet_templates[j]);
-    const Vec3 room = inlet.region.max - inlet.region.min;
-    for (int a = 0; a < 3; ++a) {
-      if (room[a] < 2 * radius)
-        throw SceneError(inlet.path + ".region",
-                         "is too small for one copy: each side must be at least the copy's "
-                         "diameter " + std::to_string(2 * radius) + " (the " + "xyz"[a] +
-                         " side is " + std::to_string(room[a]) + ")");
-    }
-  }
   if (model.any_motion) move_driven_bodies(model, state);
   if (population_changes(model.scene)) update_population(model, state, links, removed);
 }

@@ -51,9 +51,8 @@ bool population_changes(const SceneDef& scene);
 // The most bodies the run can hold at once: those at the start and every inlet's count.
 size_t population_capacity(const Model& model);
 
-// At the start of a run, on the initial state: checks the inlets (their regions must hold a
-// copy), puts bodies with a prescribed motion on their path, and runs the population stage at
-// time 0. Throws SceneError naming the inlet at fault.
+// At the start of a run, on the initial state: puts bodies with a prescribed motion on their
+// path and runs the population stage at time 0.
 void start_population(Model& model, State& state, const PopulationLinks& links,
                       std::vector<RemovedBody>& removed);
 

@@ -159,6 +159,17 @@ Model build_model(const SceneDef& scene) {
   for (const InletDef& inlet : scene.inlets) {
     Body copy = build_body(inlet.body, model);
     copy.start_velocity = inlet.velocity;
+    // The region must hold the largest copy (the sphere the placement keeps clear).
+    const Real largest = inlet.body.scale ? inlet.body.scale->max : 1;
+    const Real radius = largest * body_size(model, copy);
+    const Vec3 room = inlet.region.max - inlet.region.min;
+    for (int a = 0; a < 3; ++a) {
+      if (room[a] < 2 * radius)
+        throw SceneError(inlet.path + ".region",
+                         "is too small for one copy: each side must be at least the copy's "
+                         "diameter " + std::to_string(2 * radius) + " (the " + "xyz"[a] +
+                         " side is " + std::to_string(room[a]) + ")");
+    }
     model.inlet_templates.push_back(std::move(copy));
   }
   assign_force_sensors(model);
