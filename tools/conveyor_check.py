@@ -256,15 +256,14 @@ def main():
                        for r in read_csv(wpath)])
         ww = (wk[:, 0] >= t0) & (wk[:, 0] <= t1)
         power = slope(wk[ww, 0], wk[ww, 1])
-        lost = wk[:, 1] - wk[:, 3]  # driven work less the free bodies' energy: dissipated
-        rise = np.diff(wk[:, 3] - wk[:, 1]).max()
         print(f"(d) belt's power (slope of driven_work, {t0}-{t1} s): {power:.1f} erg/s; "
               f"mdot v^2 = {mrate * v * v:.1f} erg/s (ratio {power / (mrate * v * v):.4f}); "
               f"push x v = {push * v:.1f} erg/s (ratio {power / (push * v):.4f})")
-        print(f"    half of mdot v^2, the kinetic energy the grains carry off the belt: "
-              f"{mrate * v * v / 2:.1f} erg/s; driven work by {wk[-1, 0]:g} s {wk[-1, 1]:.1f} erg, "
-              f"total energy of the grains {wk[-1, 3]:.1f} erg, dissipated {lost[-1]:.1f} erg; "
-              f"largest rise of total - driven_work between rows {rise:+.2e} erg")
+        ke_x = 0.5 * mrate * np.mean(exit_v[:, 0] ** 2)
+        print(f"    of it, kinetic energy along x carried off the end, mdot <vx^2>/2 = {ke_x:.1f} "
+              f"erg/s (mdot v^2/2 = {mrate * v * v / 2:.1f}); the rest, {power - ke_x:.1f} erg/s "
+              f"= {(power - ke_x) / (mrate * v * v / 2):.3f} x mdot v^2/2, is lost to sliding "
+              f"(and to the tipping at the end); driven work by {wk[-1, 0]:g} s {wk[-1, 1]:.1f} erg")
 
     if args.plot:
         import matplotlib
