@@ -3,6 +3,7 @@
 
 usage: /usr/bin/python3 tools/process_snapshots.py RUN_DIR --box X0 Y0 Z0 X1 Y1 Z1
            --times T ... [--out PNG] [--elevation E] [--azimuth A] [--cut-front Y]
+           [--stack STEP]
 
 tools/figures.py draws every body whole, so a 56 cm belt squeezes the grains on it to dots.
 This draws the same shaded triangles (tools/figures.py's reader and shading) inside the box
@@ -10,7 +11,10 @@ only: a body larger than the box (the belt, a plate, a bin) is clipped to it by 
 corners (exact for axis-aligned boxes), a grain with a corner outside is left out. Bodies are
 coloured by size: scenery (larger than 2 cm) grey, grains gold, grains more than 1.5 times the
 median grain size red (the large grains of a mixed bed). --cut-front Y leaves out the triangles
-of scenery that lie wholly at y < Y (a container's front wall, to see inside).
+of scenery that lie wholly at y < Y (a container's front wall, to see inside). --stack STEP
+stacks the panels top to bottom instead, each panel square (matplotlib's 3D axes always are) and
+the next one STEP panel widths lower, overlapping: for a long, flat scene (a belt) that fills
+only a band across its square.
 Needs only Debian's python3-numpy and python3-matplotlib.
 """
 import argparse
@@ -41,6 +45,8 @@ def main():
     ap.add_argument("--cut-front", type=float, default=None)
     ap.add_argument("--height", type=float, default=3.0, help="inches per panel")
     ap.add_argument("--zoom", type=float, default=1.0)
+    ap.add_argument("--stack", type=float, default=None,
+                    help="stack the panels, each this fraction of the width below the last")
     args = ap.parse_args()
     lo, hi = np.array(args.box[:3]), np.array(args.box[3:])
     chosen = figures.pick_frames(figures.read_frames(args.run_dir), args.times, 0)
@@ -49,7 +55,12 @@ def main():
     across = np.hypot(sides[0], sides[1])
     upright = sides[2] * np.cos(tilt) + across * np.sin(tilt)
     h = args.height
-    fig = plt.figure(figsize=(len(chosen) * h * np.clip(across / upright, 0.5, 2.5), h))
+    n_pan = len(chosen)
+    if args.stack:
+        fig_h = h * (1 + args.stack * (n_pan - 1))
+        fig = plt.figure(figsize=(h, fig_h))
+    else:
+        fig = plt.figure(figsize=(n_pan * h * np.clip(across / upright, 0.5, 2.5), h))
     for k, (t, bodies, _) in enumerate(chosen):
         points, tris, arrays = figures.read_vtu(bodies)
         bid = arrays["body_id"]
@@ -83,7 +94,12 @@ def main():
         corners, n, norm = corners[ok], n[ok], norm[ok]
         light = 0.35 + 0.65 * np.clip((n / norm[:, None]) @ figures.LIGHT, 0, None)
         base = np.array([matplotlib.colors.to_rgb(c) for c in np.array(colours)[ok]])
-        ax = fig.add_subplot(1, len(chosen), k + 1, projection="3d", computed_zorder=False)
+        if args.stack:
+            ax = fig.add_axes([0, (n_pan - 1 - k) * args.stack * h / fig_h, 1, h / fig_h],
+                              projection="3d", computed_zorder=False)
+            ax.set_facecolor("none")  # the panels overlap
+        else:
+            ax = fig.add_subplot(1, n_pan, k + 1, projection="3d", computed_zorder=False)
         ax.add_collection3d(Poly3DCollection(corners, facecolors=np.clip(base * light[:, None], 0, 1),
                                              edgecolor="none"))
         ax.set_xlim(lo[0], hi[0])
@@ -92,10 +108,20 @@ def main():
         ax.set_box_aspect(sides, zoom=args.zoom)
         ax.view_init(elev=args.elevation, azim=args.azimuth)
         ax.set_axis_off()
-        ax.text2D(0.5, -0.04, f"t = {t:.3g} s", transform=ax.transAxes, ha="center", fontsize=10)
-    fig.subplots_adjust(left=0, right=1, bottom=0.05, top=1, wspace=0)
+        if args.stack:
+            ax.text2D(0.02, 0.5 + 0.5 * args.stack, f"t = {t:.3g} s", transform=ax.transAxes,
+                      fontsize=10)
+        else:
+            ax.text2D(0.5, -0.04, f"t = {t:.3g} s", transform=ax.transAxes, ha="center",
+                      fontsize=10)
+    if not args.stack:
+        fig.subplots_adjust(left=0, right=1, bottom=0.05, top=1, wspace=0)
     out = args.out or os.path.join(args.run_dir, "snapshots.png")
     fig.savefig(out, dpi=100, bbox_inches="tight", pad_inches=0.05)
+    if args.stack:  # the square panels leave white bands above and below: trim them
+        img = plt.imread(out)
+        ink = np.nonzero((img[:, :, :3] < 0.98).any(axis=(1, 2)))[0]
+        plt.imsave(out, img[max(ink[0] - 8, 0):ink[-1] + 9])
     print(f"wrote {out}")
 
 
