@@ -52,7 +52,7 @@ Checkpoint read_matching_checkpoint(const Model& model, const std::string& path,
     throw std::runtime_error(path + " was taken of another scene than " + scene_name +
                              " (only duration and checkpoint_interval may change)");
   // Where bodies come and go, the checkpoint's tags say which are there (restore checks them).
-  if (!population_changes(model.scene) && c.state.bodies.size() != model.bodies.size())
+  if (!model.bodies_come_and_go && c.state.bodies.size() != model.bodies.size())
     throw std::runtime_error(path + " holds " + std::to_string(c.state.bodies.size()) +
                              " bodies, the scene " + std::to_string(model.bodies.size()));
   return c;
@@ -69,7 +69,7 @@ Simulation::Impl::Impl(Model m) : model(std::move(m)) {
   const size_t n = model.bodies.size();
   workspace.loads.force.assign(n, Vec3::Zero());
   workspace.loads.torque.assign(n, Vec3::Zero());
-  if (population_changes(model.scene)) initial_bodies = model.bodies;
+  if (model.bodies_come_and_go) initial_bodies = model.bodies;
   reserve_capacity();
   start_population(model, state, links(), removed);
   refresh_views();
@@ -103,7 +103,7 @@ void Simulation::Impl::refresh_views() {
 
 void Simulation::Impl::restore(const Checkpoint& checkpoint) {
   state = checkpoint.state;
-  if (population_changes(model.scene)) restore_population(model, initial_bodies, state);
+  if (model.bodies_come_and_go) restore_population(model, initial_bodies, state);
   const size_t n = model.bodies.size();
   workspace.loads.force.assign(n, Vec3::Zero());
   workspace.loads.torque.assign(n, Vec3::Zero());
@@ -131,6 +131,10 @@ void Simulation::Impl::start_recording(const std::string& dir, std::unique_ptr<R
 void Simulation::Impl::write_row() {
   workspace.loads.update_active();
   find_contact_forces(model, state, workspace);
+  write_found_row();
+}
+
+void Simulation::Impl::write_found_row() {
   output->write(model, state, workspace);
   output->write_sensors(model, state.time, take_sensor_readings(model, state, workspace.forces));
   written_step = state.step;
@@ -144,15 +148,10 @@ void Simulation::Impl::advance_one() {
                      make_checkpoint(model.scene, state, workspace.forces, output->sizes()));
   workspace.loads.update_active();
   find_contact_forces(model, state, workspace);
-  if (output && k % every == 0 && written_step != k) {
-    output->write(model, state, workspace);
-    output->write_sensors(model, state.time,
-                          take_sensor_readings(model, state, workspace.forces));
-    written_step = k;
-  }
+  if (output && k % every == 0 && written_step != k) write_found_row();
   advance(model, state, workspace);
   // 0. Population (for the state this step leaves): outlets and removed_at, then inlets.
-  if (population_changes(model.scene)) {
+  if (model.bodies_come_and_go) {
     update_population(model, state, links(), removed);
     if (output) output->write_removed(removed);
     removed.clear();

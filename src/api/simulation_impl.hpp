@@ -49,6 +49,7 @@ struct Simulation::Impl {
   void start_recording(const std::string& dir, std::unique_ptr<RunOutput> out);
   void advance_one();
   void write_row();  // the current state's row: its contact forces first
+  void write_found_row();  // the same, with the contact forces already found for this state
 };
 
 }  // namespace tem

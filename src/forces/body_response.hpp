@@ -55,13 +55,11 @@ inline Vec3 surface_velocity(const Model& model, int body, Real t) {
 // to body A, as forces and torques about the centres of mass `centres`; walls (body -1) take
 // nothing. Fixed and driven bodies take theirs too (force sensors read them; the integration
 // leaves such bodies where they are told to be).
-inline void add_contact_force(const Model&, const std::vector<Vec3>& centres, int body_a,
-                              int body_b, const Vec3& at, const Vec3& on_b, const Vec3& moment,
+inline void add_contact_force(const std::vector<Vec3>& centres, int body_a, int body_b,
+                              const Vec3& at, const Vec3& on_b, const Vec3& moment,
                               std::vector<Vec3>& force, std::vector<Vec3>& torque) {
-  {
-    force[body_a] -= on_b;
-    torque[body_a] -= (at - centres[body_a]).cross(on_b) + moment;
-  }
+  force[body_a] -= on_b;
+  torque[body_a] -= (at - centres[body_a]).cross(on_b) + moment;
   if (body_b >= 0) {
     force[body_b] += on_b;
     torque[body_b] += (at - centres[body_b]).cross(on_b) + moment;

@@ -145,7 +145,7 @@ void compute_contact_forces(const Model& model, const State& state,
 
   // Impulses to forces held through the step: on B +j, on A -j, with their moments.
   auto push = [&](int body_a, int body_b, const Vec3& at, const Vec3& on_b, const Vec3& moment) {
-    add_contact_force(model, f.centres, body_a, body_b, at, on_b, moment, f.force, f.torque);
+    add_contact_force(f.centres, body_a, body_b, at, on_b, moment, f.force, f.torque);
   };
   for (size_t i = 0; i < f.points.size(); ++i) {
     const ContactPoint& c = f.points[i];

@@ -89,7 +89,7 @@ void penalty_forces(const Model& model, const State& state,
   normal_magnitude.assign(patches.size(), 0);
   tangential_magnitude.assign(patches.size(), 0);
   auto push = [&](const ContactPatch& p, const Vec3& at, const Vec3& on_b) {
-    add_contact_force(model, centres, p.body_a, p.body_b, at, on_b, Vec3::Zero(), force, torque);
+    add_contact_force(centres, p.body_a, p.body_b, at, on_b, Vec3::Zero(), force, torque);
   };
   for (size_t i = 0; i < points.size();) {
     const int k = points[i].patch;
@@ -137,7 +137,7 @@ void penalty_forces(const Model& model, const State& state,
       const Real radius = rolling_radius(model, state, p.body_a, p.body_b, p.point);
       const Vec3 moment =
           rolling_torque(model, state, p, coefficients.rolling_resistance * radius * fn, dt);
-      add_contact_force(model, centres, p.body_a, p.body_b, p.point, Vec3::Zero(), moment, force,
+      add_contact_force(centres, p.body_a, p.body_b, p.point, Vec3::Zero(), moment, force,
                         torque);
     }
     normal_magnitude[k] = fn;

@@ -316,20 +316,26 @@ void ProcessReader::read_outlets(const Json& j, const std::string& path,
     outlet.path = element(path, i);
     if (!r_.object(j[i], outlet.path)) continue;
     r_.check_keys(j[i], outlet.path, kOutletKeys);
-    if (const Json* n = r_.need(j[i], outlet.path, "name")) {
-      const std::string npath = child(outlet.path, "name");
-      if (read_name(r_, *n, npath, &outlet.name, /*wall_reserved=*/false)) {
-        const auto [it, fresh] = first_index.emplace(outlet.name, i);
-        if (!fresh)
-          r_.fail(npath, "name " + in_quotes(outlet.name) + " is used by both " +
-                             element(path, it->second) + " and " + outlet.path +
-                             "; outlet names must be unique");
-      }
-    }
+    read_list_name(j[i], path, i, outlet.path, first_index, "outlet names must be unique",
+                   &outlet.name);
     if (const Json* region = r_.need(j[i], outlet.path, "region"))
       read_region(*region, child(outlet.path, "region"), &outlet.region);
     outlets->push_back(std::move(outlet));
   }
+}
+
+void ProcessReader::read_list_name(const Json& obj, const std::string& list_path,
+                                   std::size_t item, const std::string& item_path,
+                                   std::map<std::string, std::size_t>& first,
+                                   const std::string& rule, std::string* name) {
+  const Json* n = r_.need(obj, item_path, "name");
+  if (!n) return;
+  const std::string npath = child(item_path, "name");
+  if (!read_name(r_, *n, npath, name, /*wall_reserved=*/false)) return;
+  const auto [it, fresh] = first.emplace(*name, item);
+  if (!fresh)
+    r_.fail(npath, "name " + in_quotes(*name) + " is used by both " +
+                       element(list_path, it->second) + " and " + item_path + "; " + rule);
 }
 
 void ProcessReader::read_sensors(const Json& j, const std::string& path,
@@ -368,16 +374,8 @@ void ProcessReader::read_sensors(const Json& j, const std::string& path,
       return "";
     });
 
-    if (const Json* n = r_.need(j[i], spath, "name")) {
-      const std::string npath = child(spath, "name");
-      if (read_name(r_, *n, npath, &sensor.name, /*wall_reserved=*/false)) {
-        const auto [it, fresh] = first_index.emplace(sensor.name, i);
-        if (!fresh)
-          r_.fail(npath, "name " + in_quotes(sensor.name) + " is used by both " +
-                             element(path, it->second) + " and " + spath +
-                             "; sensor names must be unique (they label rows of sensors.csv)");
-      }
-    }
+    read_list_name(j[i], path, i, spath, first_index,
+                   "sensor names must be unique (they label rows of sensors.csv)", &sensor.name);
     if (!type) continue;
     sensor.type = *type;
     switch (*type) {

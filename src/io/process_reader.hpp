@@ -8,6 +8,7 @@
 // throws, and a check across fields runs only when those fields were valid on their own.
 #pragma once
 
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -75,6 +76,11 @@ class ProcessReader {
   void check_materials(const SceneDef& scene);
   void check_sensor_bodies(const SceneDef& scene);
   void check_copy_names(const SceneDef& scene);
+  // The `name` of element `item` (path `item_path`) of the list at `list_path`, refused when an
+  // earlier element took it (`first`: name -> its element); `rule` ends the message.
+  void read_list_name(const json::Json& obj, const std::string& list_path, std::size_t item,
+                      const std::string& item_path, std::map<std::string, std::size_t>& first,
+                      const std::string& rule, std::string* name);
 
   json::Reader& r_;
   bool materials_readable_ = true;   // `materials` absent or an object

@@ -68,7 +68,7 @@ RunOutput::RunOutput(const std::string& directory, const Model& model, bool cont
   if (contacts)
     open(contacts_, directory + "/contacts.csv", kContactsCsvHeader,
          resume ? resume->contacts : -1);
-  with_removed_ = population_changes(model.scene);
+  with_removed_ = model.bodies_come_and_go;
   if (with_removed_)
     open(removed_, directory + "/removed.csv", "time,body,x,y,z,vx,vy,vz,mass",
          resume ? resume->removed : -1);

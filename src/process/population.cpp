@@ -220,13 +220,6 @@ bool insert_due(Model& model, State& state, const PopulationLinks& links) {
 
 }  // namespace
 
-bool population_changes(const SceneDef& scene) {
-  if (!scene.inlets.empty() || !scene.outlets.empty()) return true;
-  for (const BodyDef& b : scene.bodies)
-    if (b.removed_at) return true;
-  return false;
-}
-
 size_t population_capacity(const Model& model) {
   size_t n = model.bodies.size();
   for (const InletDef& inlet : model.scene.inlets) n += static_cast<size_t>(inlet.count);
@@ -236,7 +229,7 @@ size_t population_capacity(const Model& model) {
 void start_population(Model& model, State& state, const PopulationLinks& links,
                       std::vector<RemovedBody>& removed) {
   if (model.any_motion) move_driven_bodies(model, state);
-  if (population_changes(model.scene)) update_population(model, state, links, removed);
+  if (model.bodies_come_and_go) update_population(model, state, links, removed);
 }
 
 void update_population(Model& model, State& state, const PopulationLinks& links,

@@ -45,9 +45,6 @@ struct PopulationLinks {
   ExternalLoads* loads = nullptr;
 };
 
-// Whether bodies can come or go in this scene (inlets, outlets, a body with removed_at).
-bool population_changes(const SceneDef& scene);
-
 // The most bodies the run can hold at once: those at the start and every inlet's count.
 size_t population_capacity(const Model& model);
 

@@ -69,24 +69,24 @@ std::vector<SensorReading> take_sensor_readings(const Model& model, State& state
           r.mass += model.bodies[b].inertia.mass;
         }
         break;
-      case SensorType::force:
-        if (t.steps > 0) {
+      case SensorType::force: {
+        const bool averaged = t.steps > 0;
+        if (averaged) {
           r.force = t.force / static_cast<Real>(t.steps);
           r.torque = t.torque / static_cast<Real>(t.steps);
-        } else {
-          for (size_t b = 0; b < model.bodies.size(); ++b)
-            for (int watched : model.bodies[b].force_sensors)
-              if (watched == static_cast<int>(k)) add_body_load(state, forces, b, r.force, r.torque);
         }
-        for (size_t b = 0; b < model.bodies.size(); ++b)
-          for (int watched : model.bodies[b].force_sensors)
-            if (watched == static_cast<int>(k)) {
-              ++r.count;
-              r.mass += model.bodies[b].inertia.mass;
-            }
+        for (size_t b = 0; b < model.bodies.size(); ++b) {
+          for (int watched : model.bodies[b].force_sensors) {
+            if (watched != static_cast<int>(k)) continue;
+            ++r.count;
+            r.mass += model.bodies[b].inertia.mass;
+            if (!averaged) add_body_load(state, forces, b, r.force, r.torque);
+          }
+        }
         t.force = t.torque = Vec3::Zero();
         t.steps = 0;
         break;
+      }
     }
   }
   return readings;

@@ -22,6 +22,10 @@ struct Sphere {
   Real radius;
 };
 
+bool overlap(const Sphere& a, const Sphere& b) {
+  return (a.centre - b.centre).squaredNorm() < (a.radius + b.radius) * (a.radius + b.radius);
+}
+
 // A uniform grid over the region holding the spheres that reach into each cell. Cells are one
 // copy's diameter wide, so a candidate's sphere reaches at most 2 x 2 x 2 of them.
 class SphereGrid {
@@ -42,11 +46,8 @@ class SphereGrid {
   void overlapping(const Sphere& s, std::vector<int>& out) {
     out.clear();
     for_cells(s, [&](std::vector<int>& slot) {
-      for (int i : slot) {
-        const Sphere& o = spheres_[i];
-        if ((o.centre - s.centre).squaredNorm() < (o.radius + s.radius) * (o.radius + s.radius))
-          out.push_back(i);
-      }
+      for (int i : slot)
+        if (overlap(spheres_[i], s)) out.push_back(i);
     });
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
@@ -55,11 +56,7 @@ class SphereGrid {
   bool overlaps(const Sphere& s) {
     bool hit = false;
     for_cells(s, [&](std::vector<int>& slot) {
-      for (int i : slot) {
-        const Sphere& o = spheres_[i];
-        if ((o.centre - s.centre).squaredNorm() < (o.radius + s.radius) * (o.radius + s.radius))
-          hit = true;
-      }
+      for (int i : slot) hit = hit || overlap(spheres_[i], s);
     });
     return hit;
   }

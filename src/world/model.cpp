@@ -173,7 +173,11 @@ Model build_model(const SceneDef& scene) {
     model.inlet_templates.push_back(std::move(copy));
   }
   assign_force_sensors(model);
-  for (const Body& b : model.bodies) model.any_motion = model.any_motion || b.motion.has_value();
+  model.bodies_come_and_go = !scene.inlets.empty() || !scene.outlets.empty();
+  for (const Body& b : model.bodies) {
+    model.any_motion = model.any_motion || b.motion.has_value();
+    model.bodies_come_and_go = model.bodies_come_and_go || std::isfinite(b.removed_at);
+  }
   return model;
 }
 

@@ -87,6 +87,8 @@ struct Model {
   // moves.
   long long population_version = 0;
   bool any_motion = false;  // some body has a prescribed motion
+  // Bodies can come or go: the scene has inlets, outlets or a body with removed_at.
+  bool bodies_come_and_go = false;
   std::vector<Wall> walls;            // the container's six inner faces, then the scene's `walls`
   std::vector<std::string> warnings;  // accepted defects, e.g. a non-convex block allowed
   // Materials: index 0 stands for "no material" (contact.friction, contact.restitution, no
