@@ -402,14 +402,17 @@ TEST(MeshCheck, OpenMeshIsAnError) {
   TriangleMesh mesh = l_mesh();
   const auto removed = mesh.faces[5];
   mesh.faces.erase(mesh.faces.begin() + 5);
-  // All three edges of the removed face are open; the first in vertex order is reported.
+  // All three edges of the removed face are open; the first in vertex order is named first.
   std::pair<int, int> first{INT_MAX, INT_MAX};
   for (int k = 0; k < 3; ++k)
     first = std::min(first, std::pair<int, int>(std::minmax(removed[k], removed[(k + 1) % 3])));
   const std::string message = check_error(mesh);
-  EXPECT_EQ(message.rfind("L: " + edge_name(first.first, first.second) + ": belongs to face ", 0), 0u)
+  EXPECT_EQ(message.rfind("L: refused: 3 open edges\n", 0), 0u) << message;
+  EXPECT_NE(message.find("3 open edges (a face on one side only: the mesh is not closed): " +
+                         edge_name(first.first, first.second) + " at ("),
+            std::string::npos)
       << message;
-  EXPECT_NE(message.find("only (an open edge: the mesh is not closed)"), std::string::npos) << message;
+  EXPECT_NE(message.find(": belongs to face "), std::string::npos) << message;
 }
 
 TEST(MeshCheck, NonManifoldEdgeIsAnError) {
@@ -425,19 +428,32 @@ TEST(MeshCheck, NonManifoldEdgeIsAnError) {
   const int x = static_cast<int>(mesh.vertices.size()) - 1;
   mesh.faces.push_back({a, b, x});
   mesh.faces.push_back({b, a, x});
-  EXPECT_EQ(check_error(mesh), "L: " + edge_name(a, b) + ": shared by 4 faces (0, " +
-                                   std::to_string(neighbour) + ", 20, 21; not edge-manifold)");
+  // The fin's two faces are one triangle run both ways: they also coincide.
+  const std::string message = check_error(mesh);
+  EXPECT_EQ(message.rfind("L: refused: 1 edge of more than two faces, 1 pair of intersecting "
+                          "faces\n",
+                          0),
+            0u)
+      << message;
+  EXPECT_NE(message.find("(not edge-manifold): " + edge_name(a, b) + " at ("), std::string::npos)
+      << message;
+  EXPECT_NE(message.find(": shared by 4 faces (0, " + std::to_string(neighbour) + ", 20, 21)"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("face 20 (vertices "), std::string::npos) << message;
+  EXPECT_NE(message.find(" intersects face 21 (vertices "), std::string::npos) << message;
 }
 
 TEST(MeshCheck, InconsistentOrientationIsAnError) {
   TriangleMesh mesh = holed_cube_mesh();
   std::swap(mesh.faces[7][1], mesh.faces[7][2]);
   const std::string message = check_error(mesh);
+  // Each of face 7's three edges now runs the same way as its neighbour's.
   EXPECT_TRUE(message.find(": face 7 and face ") != std::string::npos ||
-              message.find(" and face 7 are ") != std::string::npos)
+              message.find(" and face 7 both run ") != std::string::npos)
       << message;
-  EXPECT_NE(message.find("inconsistently oriented"), std::string::npos) << message;
-  EXPECT_EQ(message.rfind("holed cube: edge ", 0), 0u) << message;
+  EXPECT_EQ(message.rfind("holed cube: refused: 3 inconsistently oriented edges\n", 0), 0u)
+      << message;
 }
 
 TEST(MeshCheck, InvertedMeshIsTurned) {
@@ -456,35 +472,49 @@ TEST(MeshCheck, ZeroVolumeIsAnError) {
   sheet.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
   sheet.faces = {{0, 1, 2}, {0, 2, 1}};
   const std::string message = check_error(sheet);
-  EXPECT_EQ(message.rfind("sheet: face 0 (vertices 0, 1, 2): the closed surface of 2 faces it "
-                          "belongs to encloses zero volume",
+  // A closed surface of two faces that coincide: no volume, and the faces intersect.
+  EXPECT_EQ(message.rfind("sheet: refused: 1 surface of zero volume, 1 pair of intersecting faces\n",
                           0),
             0u)
+      << message;
+  EXPECT_NE(message.find("face 0 (vertices 0, 1, 2) at (0.333333, 0.333333, 0): the closed surface "
+                         "of 2 faces it belongs to encloses |V| = 0 <= "),
+            std::string::npos)
       << message;
 }
 
 TEST(MeshCheck, DegenerateFacesAreErrors) {
   TriangleMesh repeated = l_mesh();
   repeated.faces[3][2] = repeated.faces[3][0];
+  // The face has no edges left: the three it had are open on its neighbours' side.
   const std::string r = check_error(repeated);
-  EXPECT_EQ(r.rfind("L: face 3 (vertices ", 0), 0u) << r;
-  EXPECT_NE(r.find("appears twice (a degenerate face)"), std::string::npos) << r;
+  EXPECT_EQ(r.rfind("L: refused: 1 face with a repeated vertex, 3 open edges\n", 0), 0u) << r;
+  EXPECT_NE(r.find("(a degenerate face): face 3 (vertices "), std::string::npos) << r;
+  EXPECT_NE(r.find(" appears twice"), std::string::npos) << r;
 
   TriangleMesh flat = l_mesh();
   const auto f = flat.faces[0];
   flat.vertices.push_back(0.5 * (flat.vertices[f[0]] + flat.vertices[f[1]]));
   flat.faces.push_back({f[0], f[1], static_cast<int>(flat.vertices.size()) - 1});
+  // A flat face on edge f0-f1 gives it a third face, and its other two edges are open.
   const std::string z = check_error(flat);
-  EXPECT_EQ(z.rfind("L: face 20 (vertices ", 0), 0u) << z;
-  EXPECT_NE(z.find("zero area"), std::string::npos) << z;
+  EXPECT_EQ(z.rfind("L: refused: 1 face of zero area, 2 open edges, 1 edge of more than two "
+                    "faces\n",
+                    0),
+            0u)
+      << z;
+  EXPECT_NE(z.find("(a degenerate face: area at most 1e-14 x bounding-box diagonal^2): face 20 (vertices "),
+            std::string::npos)
+      << z;
 }
 
 TEST(MeshCheck, NonFiniteCoordinateIsAnError) {
   TriangleMesh mesh = l_mesh();
   mesh.vertices[7].y() = std::nan("");
   const std::string message = check_error(mesh);
-  EXPECT_EQ(message.rfind("L: vertex 7 at (", 0), 0u) << message;
-  EXPECT_NE(message.find("not finite"), std::string::npos) << message;
+  EXPECT_EQ(message.rfind("L: refused: 1 vertex with a non-finite coordinate\n", 0), 0u) << message;
+  EXPECT_NE(message.find("(a coordinate is not finite): vertex 7 at ("), std::string::npos)
+      << message;
 }
 
 // Two boxes touching at one corner only: the corner's faces form two fans.
@@ -496,8 +526,10 @@ TEST(MeshCheck, VerticesMustBeManifold) {
     for (int& v : f)
       if (v == 8) v = 6;
   const std::string message = check_error(mesh);
-  EXPECT_EQ(message.rfind("box: vertex 6 at (1, 1, 1): its faces form 2 fans", 0), 0u) << message;
-  EXPECT_NE(message.find("not vertex-manifold"), std::string::npos) << message;
+  EXPECT_EQ(message.rfind("box: refused: 1 pinched vertex\n", 0), 0u) << message;
+  EXPECT_NE(message.find("not vertex-manifold): vertex 6 at (1, 1, 1): its faces form 2 fans"),
+            std::string::npos)
+      << message;
 }
 
 TEST(MeshCheck, UnusedVerticesAreDroppedWithAWarning) {
@@ -532,7 +564,9 @@ TEST(MeshCheck, CavitiesPointInwards) {
   // A cavity pointing outwards: a solid inside a solid or a cavity the wrong way round?
   TriangleMesh doubled = combined(outer, inverted(cavity));
   const std::string message = check_error(doubled);
-  EXPECT_EQ(message.rfind("hollow: face 12 (vertices ", 0), 0u) << message;
+  EXPECT_EQ(message.rfind("hollow: refused: 1 nested surface pointing the wrong way\n", 0), 0u)
+      << message;
+  EXPECT_NE(message.find("inwards): face 12 (vertices "), std::string::npos) << message;
   EXPECT_NE(message.find("lies inside 1 other surface(s) and points outwards"), std::string::npos)
       << message;
 }
@@ -554,9 +588,11 @@ TEST(MeshCheck, SelfIntersectionIsAnError) {
   TriangleMesh mesh = combined(box_mesh(Vec3(0, 0, 0), Vec3(2, 2, 2), "overlap"),
                                box_mesh(Vec3(1, 1, 1), Vec3(3, 3, 3)));
   const std::string message = check_error(mesh);
-  EXPECT_EQ(message.rfind("overlap: face ", 0), 0u) << message;
-  EXPECT_NE(message.find("intersects face "), std::string::npos) << message;
-  EXPECT_NE(message.find("self-intersecting"), std::string::npos) << message;
+  EXPECT_EQ(message.rfind("overlap: refused: ", 0), 0u) << message;
+  EXPECT_NE(message.find(" pairs of intersecting faces (self-intersecting): face "),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find(" intersects face "), std::string::npos) << message;
 }
 
 // Reading and checking a 75,000-face torus from OBJ: the times are printed for the record (the

@@ -17,11 +17,13 @@ struct MeshCheck {
   std::vector<std::string> warnings;
 };
 
-// Throws MeshError (naming mesh.source, the face or vertex, and why) at the first of: a
-// degenerate face (repeated vertex, zero area), an edge shared by more than two faces or an open
-// edge (not closed), a vertex whose faces do not form one fan (not vertex-manifold),
-// inconsistently oriented neighbours, two faces that intersect (other than along shared edges
-// and vertices), a zero or negative volume that turning cannot fix, a non-finite coordinate.
+// Throws one MeshError for everything wrong with the mesh, naming mesh.source and, per kind of
+// defect, how many there are and the first few (face, edge or vertex and where): no faces, a
+// missing vertex, a non-finite coordinate, a degenerate face (repeated vertex, zero area), an
+// open edge (not closed), an edge of more than two faces, inconsistently oriented neighbours, a
+// vertex whose faces do not form one fan (not vertex-manifold), a closed surface of zero volume,
+// two faces that intersect (other than along shared edges and vertices), nested surfaces that do
+// not alternate; and the checks that defects kept it from making (docs/meshes.md, "Checking").
 // A mesh whose faces all point inwards is turned in place and reported in `turned`/`warnings`.
 MeshCheck check_mesh(TriangleMesh& mesh);
 

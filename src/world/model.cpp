@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "geometry/shape_blocks.hpp"
+#include "mesh/mesh_body.hpp"
 #include "world/fill.hpp"
 #include "mass/mass_properties.hpp"
 
@@ -47,6 +49,38 @@ void build_materials(const SceneDef& scene, Model& model) {
     if (p.rolling_resistance) c.rolling_resistance = *p.rolling_resistance;
     model.pairs[a * n + b] = model.pairs[b * n + a] = c;
   }
+}
+
+// A mesh shape cut approximately, placed in its body's shape frame. Its blocks are convex hulls
+// that cover more than the mesh (docs/meshes.md), so the body's mass comes from the mesh's own
+// surface integrals instead of from the blocks.
+struct ApproximateMesh {
+  const ShapeDef* shape;
+  Mat3 rotation;  // x_body = rotation * x_mesh + position, as shape_polyhedra() places its blocks
+  Vec3 position;
+};
+
+void approximate_meshes(const ShapeDef& shape, const Mat3& rotation, const Vec3& position,
+                        std::vector<ApproximateMesh>& out) {
+  if (shape.type == ShapeType::mesh && shape.mesh &&
+      shape.mesh->cutting == MeshCutting::approximate)
+    out.push_back({&shape, rotation, position});
+  if (shape.type == ShapeType::compound)
+    for (const ShapeDef& part : shape.parts)
+      approximate_meshes(part, rotation * part.rotation, rotation * part.position + position, out);
+}
+
+// The mesh's unit-density surface integrals (in its frame, already scaled by the shape's
+// `scale`) for `density`, times a copy's size factor s: volume and mass go as s^3, the centre
+// as s, the second moment as s^5.
+PlacedMass mesh_mass(const ApproximateMesh& m, Real density, Real s) {
+  const MassProperties& unit = m.shape->mesh->surface;
+  MassProperties mass;
+  mass.volume = unit.volume * s * s * s;
+  mass.mass = density * mass.volume;
+  mass.center = s * unit.center;
+  mass.second_moment = (density * s * s * s * s * s) * unit.second_moment;
+  return {mass, m.rotation, s * m.position};
 }
 
 }  // namespace
@@ -90,6 +124,16 @@ Body build_body(const BodyDef& def, Model& model, Real scale) {
 
   std::vector<PlacedMass> parts;
   std::map<std::string, std::vector<Real>> nonconvex;  // shape path -> how far each sticks out
+  // Approximately cut meshes weigh what the mesh does: their blocks add no mass of their own.
+  // Exactly cut ones keep their blocks' masses, which are the mesh's to round-off
+  // (MeshScene.ExactBodyHasTheMeshsMassProperties) and keep the body's centre the blocks' own.
+  std::vector<ApproximateMesh> meshes;
+  approximate_meshes(def.shape, Mat3::Identity(), Vec3::Zero(), meshes);
+  std::set<std::string> mesh_paths;
+  for (const ApproximateMesh& m : meshes) {
+    mesh_paths.insert(m.shape->path);
+    parts.push_back(mesh_mass(m, def.density, scale));
+  }
   for (PlacedPolyhedron& placed : shape_polyhedra(def.shape)) {
     // A copy's size factor scales its blocks before they are built, so that its elements and
     // mass properties are those of the scaled shape, exactly.
@@ -108,7 +152,8 @@ Body build_body(const BodyDef& def, Model& model, Real scale) {
     const Block& block = model.blocks[index];
     if (!block.convex()) nonconvex[placed.path].push_back(block.nonconvexity());
     const Vec3 centre = placed.rotation * block.centroid_in_input() + placed.position;
-    parts.push_back({block_mass_properties(block, def.density), placed.rotation, centre});
+    if (!mesh_paths.count(placed.path))
+      parts.push_back({block_mass_properties(block, def.density), placed.rotation, centre});
     body.blocks.push_back({index, placed.rotation, centre, placed.path});
   }
 
