@@ -290,5 +290,21 @@ TEST(MeshRefusal, SharedVerticesAndEdgesAreNotCrossings) {
   EXPECT_EQ(soup({o, a, b, Vec3(2, 2, 0)}, {{0, 1, 2}, {2, 1, 3}}), "soup: refused: 4 open edges");
 }
 
+// 500 copies of one triangle cross each other in 124,750 pairs: the search stops at 100,000
+// and says so.
+TEST(MeshRefusal, CrossingsStopAtAHundredThousandPairs) {
+  TriangleMesh mesh;
+  mesh.source = "pile";
+  mesh.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  mesh.faces.assign(500, {0, 1, 2});
+  const std::string message = check_error(mesh);
+  EXPECT_EQ(first_line(message),
+            "pile: refused: 3 edges of more than two faces, 100000 pairs of intersecting faces")
+      << message;
+  EXPECT_NE(message.find("\n  not checked: pairs of intersecting faces beyond the first 100000"),
+            std::string::npos)
+      << message.substr(0, 2000);
+}
+
 }  // namespace
 }  // namespace tem

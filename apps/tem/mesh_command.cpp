@@ -72,6 +72,11 @@ int mesh_command(const std::string& mesh_file, const std::string& cutting_name, 
   }
 
   const char* cutting_text = cutting == MeshCutting::exact ? "exact" : "approximate";
+  // The figures a user weighs max_blocks by: over-coverage against the mesh's volume, the
+  // Hausdorff distance against the bounding-box diagonal (the blocks' box is the mesh's: they
+  // cover the mesh and each is the hull of a part of it).
+  const Real over_coverage_percent = 100 * cut.over_coverage / mesh->check.volume;
+  const Real hausdorff_percent = 100 * cut.hausdorff / figures.diagonal;
   if (json) {
     nlohmann::ordered_json j = {
         {"file", mesh_file},
@@ -86,7 +91,9 @@ int mesh_command(const std::string& mesh_file, const std::string& cutting_name, 
         {"volume_error", relative(cut.blocks_volume, mesh->check.volume)},
         {"smallest_block_volume", figures.smallest_volume},
         {"over_coverage", cut.over_coverage},
+        {"over_coverage_percent", over_coverage_percent},
         {"hausdorff", cut.hausdorff},
+        {"hausdorff_percent", hausdorff_percent},
         {"diagonal", figures.diagonal},
         {"merged_slivers", cut.merged_slivers},
         {"read_seconds", mesh->read_seconds},
@@ -112,9 +119,9 @@ int mesh_command(const std::string& mesh_file, const std::string& cutting_name, 
               figures.smallest_volume / mesh->check.volume);
   if (cutting == MeshCutting::approximate) {
     std::printf("  over-coverage       %.4g (%.3g %% of the mesh's volume)\n", cut.over_coverage,
-                100 * cut.over_coverage / mesh->check.volume);
+                over_coverage_percent);
     std::printf("  Hausdorff distance  %.4g (%.3g %% of the bounding-box diagonal)\n",
-                cut.hausdorff, 100 * cut.hausdorff / figures.diagonal);
+                cut.hausdorff, hausdorff_percent);
   }
   if (cut.merged_slivers > 0) std::printf("  slivers merged      %d\n", cut.merged_slivers);
   if (!out_file.empty())

@@ -144,7 +144,8 @@ bool faces_cross(const std::vector<Inexact::Point_3>& p, const std::array<int, 3
 }  // namespace
 
 std::vector<std::pair<int, int>> crossing_faces(const TriangleMesh& mesh,
-                                                const std::vector<char>& left_out) {
+                                                const std::vector<char>& left_out,
+                                                std::size_t max_pairs) {
   using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
   std::vector<Inexact::Point_3> points;
   points.reserve(mesh.vertices.size());
@@ -158,12 +159,18 @@ std::vector<std::pair<int, int>> crossing_faces(const TriangleMesh& mesh,
                        static_cast<int>(f));
   }
   std::vector<std::pair<int, int>> pairs;
+  struct Enough {};  // thrown to stop the sweep at max_pairs
   // Boxes are closed: faces that only touch are candidates, and the exact test decides.
-  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& a, const Box& b) {
-    const int i = a.info(), j = b.info();
-    if (faces_cross(points, mesh.faces[i], mesh.faces[j]))
-      pairs.emplace_back(std::min(i, j), std::max(i, j));
-  });
+  try {
+    CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& a, const Box& b) {
+      const int i = a.info(), j = b.info();
+      if (faces_cross(points, mesh.faces[i], mesh.faces[j])) {
+        pairs.emplace_back(std::min(i, j), std::max(i, j));
+        if (pairs.size() >= max_pairs) throw Enough{};
+      }
+    });
+  } catch (const Enough&) {
+  }
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   return pairs;

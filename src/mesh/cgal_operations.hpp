@@ -2,6 +2,7 @@
 // cgal_operations.cpp alone (they are heavy to compile).
 #pragma once
 
+#include <cstddef>
 #include <utility>
 #include <vector>
 
@@ -18,8 +19,10 @@ std::vector<std::pair<int, int>> self_intersecting_faces(const TriangleMesh& mes
 // number and the edges between those: a triangle-soup test, so that a mesh with open or
 // non-manifold edges, inconsistent orientation or pinched vertices can be checked too (CGAL
 // 5.5's PMP has no soup version). Faces with `left_out[f]` set are skipped; every other face must
-// have three distinct vertices in range with finite coordinates and a non-zero area.
+// have three distinct vertices in range with finite coordinates and a non-zero area. The search
+// stops at `max_pairs` pairs (a soup of many copies of one triangle has n^2 / 2).
 std::vector<std::pair<int, int>> crossing_faces(const TriangleMesh& mesh,
-                                                const std::vector<char>& left_out);
+                                                const std::vector<char>& left_out,
+                                                std::size_t max_pairs);
 
 }  // namespace tem
