@@ -473,8 +473,8 @@ TEST(MeshCheck, ZeroVolumeIsAnError) {
   sheet.faces = {{0, 1, 2}, {0, 2, 1}};
   const std::string message = check_error(sheet);
   // A closed surface of two faces that coincide: no volume, and the faces intersect.
-  EXPECT_EQ(message.rfind("sheet: refused: 1 surface of zero volume, 1 pair of intersecting faces\n",
-                          0),
+  EXPECT_EQ(message.rfind(
+                "sheet: refused: 1 surface of zero volume, 1 pair of intersecting faces\n", 0),
             0u)
       << message;
   EXPECT_NE(message.find("face 0 (vertices 0, 1, 2) at (0.333333, 0.333333, 0): the closed surface "
@@ -503,7 +503,8 @@ TEST(MeshCheck, DegenerateFacesAreErrors) {
                     0),
             0u)
       << z;
-  EXPECT_NE(z.find("(a degenerate face: area at most 1e-14 x bounding-box diagonal^2): face 20 (vertices "),
+  EXPECT_NE(z.find("(a degenerate face: area at most 1e-14 x bounding-box diagonal^2): face 20 "
+                   "(vertices "),
             std::string::npos)
       << z;
 }
