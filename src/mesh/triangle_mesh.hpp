@@ -21,9 +21,9 @@ struct TriangleMesh {
   std::vector<std::array<int, 3>> faces;
 };
 
-// A mesh that cannot become a body. what() names the file, the face or vertex, and why, e.g.
-// "parts/nut.obj: face 12 (vertices 4, 9, 17): its edge 9-17 is shared by 3 faces (not
-// edge-manifold)".
+// A mesh that cannot become a body. what() names the file and why; a mesh refused by
+// check_mesh() gets one message for everything wrong with it, e.g. "parts/nut.obj: refused:
+// 6 open edges, 1 pinched vertex", then the first places of each kind (mesh_check.hpp).
 class MeshError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
