@@ -15,7 +15,6 @@ packages=(
   python3-meshio         # tests: reads the ParaView output back
   python3-numpy python3-matplotlib   # tools/figures.py
   pybind11-dev python3-pytest python3-dev   # the Python module (python/) and its tests
-  libassimp-dev          # reads mesh files (OBJ, STL, PLY, OFF)
   libcgal-dev            # checks meshes and cuts them exactly into convex blocks
   libopenmpi-dev openmpi-bin   # mpirun -np N tem run (TEM_MPI)
   libtrilinos-zoltan-dev       # recursive coordinate bisection of the bodies among the ranks

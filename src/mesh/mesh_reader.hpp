@@ -1,7 +1,10 @@
-// Reading triangle meshes from OBJ, STL (ASCII and binary), PLY and OFF files through assimp.
+// Reading triangle meshes from OBJ, STL (ASCII and binary), PLY (ASCII and binary) and OFF files.
 //
-// assimp triangulates polygons; TEM then welds vertices at identical positions (STL stores each
-// triangle's corners separately) and drops nothing else: checking is check_mesh()'s job.
+// Coordinates are read in double precision, each rounded once from the file's decimal digits
+// (binary STL holds floats, which convert exactly). Polygons are triangulated
+// (polygon_triangulation.hpp) and vertices at identical positions welded (STL stores each
+// triangle's corners separately); nothing else is dropped: checking is check_mesh()'s job. The
+// vertices are numbered in the order the triangles first use them.
 #pragma once
 
 #include <cstddef>
@@ -13,7 +16,8 @@ namespace tem {
 
 // The file's extension (case-insensitive) chooses the format: .obj .stl .ply .off. Every vertex
 // is multiplied by `scale` (> 0). Throws MeshError for a missing or unreadable file, an unknown
-// extension, a file assimp cannot parse, a file with no triangles, or a non-finite coordinate.
+// extension, a damaged file (the message names the line in text formats), a file with no faces,
+// points or lines among its faces, or a non-finite coordinate.
 TriangleMesh read_mesh_file(const std::string& path, Real scale = 1.0);
 
 // The same from bytes in memory; `extension` ("obj", "stl", ...) says the format and `source`
