@@ -27,5 +27,5 @@ for f in scenes/meshes/*; do
   { printf "$b"; cat "$f"; } >"$mesh_corpus/seed_${f//\//_}"
 done
 cd build/fuzz
-LSAN_OPTIONS="suppressions=$(pwd)/../../fuzz/lsan.supp" ./fuzz_mesh_reader -max_total_time="$seconds" -max_len=16384 -timeout=10 -rss_limit_mb=2048 \
+LSAN_OPTIONS="suppressions=$(pwd)/../../fuzz/lsan.supp" ./fuzz_mesh_reader -max_total_time="$seconds" -dict=../../fuzz/mesh.dict -max_len=16384 -timeout=10 -rss_limit_mb=2048 \
   -print_final_stats=1 mesh_corpus 2>&1 | tail -n 12
