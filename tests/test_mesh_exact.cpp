@@ -204,6 +204,62 @@ TEST(MeshExact, PaperRingMatchesTheRingPrimitive) {
   report("exact.paper_ring.vs_primitive.second_moment_error", moment_error);
 }
 
+// Issue 21: CAD-like solids of revolution that CGAL cuts into pieces with corners bent by the
+// mesh's rounding (its cones' quads are planar only to rounding). Every one must be cut. With
+// double vertices the bends are 1e-16 and the blocks keep the mesh's volume to 1e-12.
+struct RevolvedPart {
+  std::string name;
+  TriangleMesh mesh;
+};
+
+std::vector<RevolvedPart> revolved_parts() {
+  using testing_support::revolved_mesh;
+  using testing_support::spool_mesh;
+  return {
+      {"spool_16", spool_mesh(16, 0, 0, 0)},
+      {"spool_16_bore", spool_mesh(16, 0.2, 0, 0)},
+      {"spool_16_chamfer", spool_mesh(16, 0, 0.03, 0)},
+      {"spool_16_bore_chamfer", spool_mesh(16, 0.2, 0.03, 0)},
+      {"spool_16_fillet", spool_mesh(16, 0, 0, 0.1)},
+      {"spool_16_bore_fillet_thick_top", spool_mesh(16, 0.2, 0, 0.1, 0.05, 0.2)},
+      {"spool_24_bore_chamfer_fillet", spool_mesh(24, 0.2, 0.02, 0.08, 0.08, 0.15)},
+      {"pulley_16", revolved_mesh({{0.2, 0}, {1, 0}, {1, 0.3}, {0.7, 0.5}, {1, 0.7}, {1, 1}, {0.2, 1}},
+                                  16, "pulley")},
+      {"flanged_bushing_16",
+       revolved_mesh({{0.5, 0}, {1, 0}, {1, 0.15}, {0.7, 0.15}, {0.7, 1.2}, {0.5, 1.2}}, 16,
+                     "bushing")},
+      {"stepped_shaft_16",
+       revolved_mesh({{0, 0}, {0.3, 0}, {0.3, 1}, {0.5, 1}, {0.5, 1.5}, {0.25, 1.5}, {0.25, 2.5},
+                      {0, 2.5}},
+                     16, "shaft")},
+      {"washer_stack_16",
+       revolved_mesh({{0.3, 0}, {1, 0}, {1, 0.1}, {0.6, 0.1}, {0.6, 0.2}, {0.9, 0.2}, {0.9, 0.3},
+                      {0.5, 0.3}, {0.5, 0.4}, {0.3, 0.4}},
+                     16, "washers")},
+  };
+}
+
+Real volume_error(const Cut& cut, const TriangleMesh& mesh) {
+  const Real surface = surface_mass_properties(triangles_of(mesh)).volume;
+  return std::abs(combined(cut.blocks).volume - surface) / surface;
+}
+
+TEST(MeshExact, RevolvedPartsAreCut) {
+  for (const RevolvedPart& part : revolved_parts()) {
+    const Cut cut = cut_and_check(part.mesh, part.name);
+    EXPECT_LE(volume_error(cut, part.mesh), 1e-12) << part.name;
+  }
+}
+
+// The same parts as `tem mesh` reads them from a file: vertices rounded to 32-bit floats, so
+// cones' quads bend by about 1e-8 and CGAL's pieces have corners bent by less than Block's
+// tolerance (the spools of issue 21 were refused for these). Their blocks leave out those
+// corners; the volume this changes is bounded by the cutter (1e-9 of the mesh's, kExact here).
+TEST(MeshExact, RevolvedPartsReadAsFloatsAreCut) {
+  for (const RevolvedPart& part : revolved_parts())
+    cut_and_check(testing_support::rounded_to_float(part.mesh), part.name + "_float");
+}
+
 TEST(MeshExact, BadMeshesGiveMeshError) {
   TriangleMesh open = testing_support::l_mesh();
   open.faces.pop_back();
