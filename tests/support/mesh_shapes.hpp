@@ -6,6 +6,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -214,6 +216,19 @@ inline TriangleMesh rounded_to_float(TriangleMesh mesh) {
       v[k] = rounded;
     }
   mesh.source += " (float)";
+  return mesh;
+}
+
+// The mesh with its vertices rounded to `digits` significant decimal digits, as many exporters
+// write OBJ files ("%g": 6): planar quads then bend by about 1e-6 of the size.
+inline TriangleMesh rounded_to_digits(TriangleMesh mesh, int digits) {
+  for (Vec3& v : mesh.vertices)
+    for (int k = 0; k < 3; ++k) {
+      char text[40];
+      std::snprintf(text, sizeof text, "%.*g", digits, v[k]);
+      v[k] = std::strtod(text, nullptr);
+    }
+  mesh.source += " (" + std::to_string(digits) + " digits)";
   return mesh;
 }
 
