@@ -216,6 +216,13 @@ struct RevolvedPart {
 std::vector<RevolvedPart> revolved_parts() {
   using testing_support::revolved_mesh;
   using testing_support::spool_mesh;
+  using Profile = std::vector<std::array<Real, 2>>;  // (r, z), counter-clockwise
+  const Profile pulley{{0.2, 0}, {1, 0}, {1, 0.3}, {0.7, 0.5}, {1, 0.7}, {1, 1}, {0.2, 1}};
+  const Profile bushing{{0.5, 0}, {1, 0}, {1, 0.15}, {0.7, 0.15}, {0.7, 1.2}, {0.5, 1.2}};
+  const Profile shaft{{0, 0},     {0.3, 0},    {0.3, 1},    {0.5, 1},
+                      {0.5, 1.5}, {0.25, 1.5}, {0.25, 2.5}, {0, 2.5}};
+  const Profile washers{{0.3, 0},   {1, 0},     {1, 0.1},   {0.6, 0.1}, {0.6, 0.2},
+                        {0.9, 0.2}, {0.9, 0.3}, {0.5, 0.3}, {0.5, 0.4}, {0.3, 0.4}};
   return {
       {"spool_16", spool_mesh(16, 0, 0, 0)},
       {"spool_16_bore", spool_mesh(16, 0.2, 0, 0)},
@@ -223,19 +230,10 @@ std::vector<RevolvedPart> revolved_parts() {
       {"spool_16_bore_chamfer", spool_mesh(16, 0.2, 0.03, 0)},
       {"spool_16_fillet", spool_mesh(16, 0, 0, 0.1)},
       {"spool_16_bore_fillet_thick_top", spool_mesh(16, 0.2, 0, 0.1, 0.05, 0.2)},
-      {"pulley_16", revolved_mesh({{0.2, 0}, {1, 0}, {1, 0.3}, {0.7, 0.5}, {1, 0.7}, {1, 1}, {0.2, 1}},
-                                  16, "pulley")},
-      {"flanged_bushing_16",
-       revolved_mesh({{0.5, 0}, {1, 0}, {1, 0.15}, {0.7, 0.15}, {0.7, 1.2}, {0.5, 1.2}}, 16,
-                     "bushing")},
-      {"stepped_shaft_16",
-       revolved_mesh({{0, 0}, {0.3, 0}, {0.3, 1}, {0.5, 1}, {0.5, 1.5}, {0.25, 1.5}, {0.25, 2.5},
-                      {0, 2.5}},
-                     16, "shaft")},
-      {"washer_stack_16",
-       revolved_mesh({{0.3, 0}, {1, 0}, {1, 0.1}, {0.6, 0.1}, {0.6, 0.2}, {0.9, 0.2}, {0.9, 0.3},
-                      {0.5, 0.3}, {0.5, 0.4}, {0.3, 0.4}},
-                     16, "washers")},
+      {"pulley_16", revolved_mesh(pulley, 16, "pulley")},
+      {"flanged_bushing_16", revolved_mesh(bushing, 16, "bushing")},
+      {"stepped_shaft_16", revolved_mesh(shaft, 16, "shaft")},
+      {"washer_stack_16", revolved_mesh(washers, 16, "washers")},
   };
 }
 

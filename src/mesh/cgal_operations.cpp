@@ -477,8 +477,8 @@ Real resolution(const TriangleMesh& mesh) {
       const volatile float rounded = static_cast<float>(v[k]);
       floats = floats && rounded == v[k];
     }
-  const Real unit = floats ? std::numeric_limits<float>::epsilon()
-                           : std::numeric_limits<Real>::epsilon();
+  const Real unit =
+      floats ? std::numeric_limits<float>::epsilon() : std::numeric_limits<Real>::epsilon();
   return 4 * unit * largest;
 }
 

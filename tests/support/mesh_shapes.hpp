@@ -158,8 +158,9 @@ inline TriangleMesh revolved_mesh(const std::vector<std::array<Real, 2>>& profil
   const size_t m = profile.size();
   for (size_t i = 0; i < m; ++i)
     for (int k = 0; k < segments; ++k) {
-      const size_t j = (i + 1) % m, k1 = static_cast<size_t>((k + 1) % segments), k0 = static_cast<size_t>(k);
-      // Seen from outside, a counter-clockwise profile sweeps clockwise: (i,k) (i,k+1) (j,k+1) (j,k).
+      const size_t j = (i + 1) % m, k0 = static_cast<size_t>(k);
+      const size_t k1 = static_cast<size_t>((k + 1) % segments);
+      // Seen from outside, the counter-clockwise profile sweeps clockwise.
       const int a = ring[i][k0], b = ring[i][k1], c = ring[j][k1], d = ring[j][k0];
       for (const std::array<int, 3>& t : {std::array<int, 3>{a, b, c}, std::array<int, 3>{a, c, d}})
         if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0]) mesh.faces.push_back(t);
@@ -171,8 +172,9 @@ inline TriangleMesh revolved_mesh(const std::vector<std::array<Real, 2>>& profil
 // on a hub of radius `hub`, length 1 in all, a bore of radius `bore` (0: none), the flanges'
 // outer rims chamfered by `chamfer` (0: none) and the hub joined to each flange by a quarter
 // circle of radius `fillet` in `fillet_steps` steps (0: a sharp corner).
-inline TriangleMesh spool_mesh(int segments, Real bore, Real chamfer, Real fillet, Real bottom = 0.1,
-                               Real top = 0.1, Real hub = 0.4, int fillet_steps = 4) {
+inline TriangleMesh spool_mesh(int segments, Real bore, Real chamfer, Real fillet,
+                               Real bottom = 0.1, Real top = 0.1, Real hub = 0.4,
+                               int fillet_steps = 4) {
   std::vector<std::array<Real, 2>> p{{bore, 0}};
   auto rim = [&](Real z0, Real z1) {  // the flange's outer edge, from z0 to z1
     const Real s = z1 > z0 ? 1 : -1;
@@ -194,7 +196,8 @@ inline TriangleMesh spool_mesh(int segments, Real bore, Real chamfer, Real fille
     for (int k = 0; k <= fillet_steps; ++k) {
       const Real a = std::numbers::pi / 2 * k / fillet_steps;
       const Real along = into_hub ? a : std::numbers::pi / 2 - a;
-      p.push_back({hub + fillet - fillet * std::sin(along), z + s * (fillet - fillet * std::cos(along))});
+      p.push_back(
+          {hub + fillet - fillet * std::sin(along), z + s * (fillet - fillet * std::cos(along))});
     }
   };
   rim(0, bottom);
