@@ -327,10 +327,11 @@ std::optional<Piece> make_piece(const std::vector<ExactPoint>& points,
     return piece;
   }
   // Still rejected: corners bent by more than double rounding but less than Block's tolerance.
-  // A mesh read from a file comes as 32-bit floats (Assimp), so its quads are planar only to
-  // about 1e-8 of its size, and CGAL's exact cuts through their diagonals leave corners bent by
-  // that much. The hull without those corners (hull_block) is the piece less slivers of that
-  // thickness; the volume it loses is counted against the mesh's rounding budget.
+  // A mesh written as 32-bit floats (binary STL) or with few digits (an OBJ exporter's "%g")
+  // has quads planar only to 1e-8 or 1e-6 of its size, and CGAL's exact cuts through their
+  // diagonals leave corners bent by that much, or short edges where a cut meets a mesh edge
+  // near its vertex. The hull without those corners (trimmed_hull) is the piece less slivers of
+  // that thickness; the volume it loses is counted against the mesh's rounding budget.
   // Nodes closer than the mesh's resolution are welded first: a cut meets a mesh edge a hair
   // from the mesh's own vertex there.
   // A piece it would change by more than the budget stays a defective piece, to be joined to a
@@ -465,8 +466,8 @@ Real check_input(const TriangleMesh& mesh, const Surface& surface) {
 }
 
 // The distance below which the mesh's coordinates cannot tell two points apart: a few units in
-// the last place of its largest coordinate, as 32-bit floats when every coordinate is one (the
-// mesh reader's Assimp delivers floats) or as doubles.
+// the last place of its largest coordinate, as 32-bit floats when every coordinate is one (a
+// binary STL, or a reader that delivers floats) or as doubles.
 Real resolution(const TriangleMesh& mesh) {
   Real largest = 0;
   bool floats = true;
@@ -567,11 +568,18 @@ MeshDecomposition decompose(const TriangleMesh& mesh) {
       << " allowed";
     throw MeshError(e.str());
   }
-  if (dropped > kDroppedFraction * result.mesh_volume)
-    throw MeshError(mesh.source + ": CGAL's convex decomposition left thin pieces of volume " +
-                    std::to_string(dropped) + " (" + std::to_string(dropped / result.mesh_volume) +
-                    " of the mesh) that join no neighbour into a convex block, e.g. " +
-                    first_dropped);
+  // Left: pieces that neither Block nor the hulls above accept (thinner than Block's tolerance,
+  // or bent by more than the rounding budget) and that join no neighbour.
+  if (dropped > kDroppedFraction * result.mesh_volume) {
+    std::ostringstream e;
+    e << mesh.source << ": CGAL's convex decomposition left pieces of volume " << dropped << " ("
+      << dropped / result.mesh_volume
+      << " of the mesh) that Block refuses, whose hull less their corners bent by rounding "
+         "would change the volume by more than "
+      << kRoundingFraction << " of the mesh's, and that join no neighbour into a convex block, "
+      << "e.g. " << first_dropped;
+    throw MeshError(e.str());
+  }
   if (dropped > 0) {
     std::ostringstream w;
     w << mesh.source << ": dropped thin pieces of CGAL's convex decomposition, volume " << dropped
