@@ -229,7 +229,7 @@ std::vector<RevolvedPart> revolved_parts() {
       {"spool_16_chamfer", spool_mesh(16, 0, 0.03, 0)},
       {"spool_16_bore_chamfer", spool_mesh(16, 0.2, 0.03, 0)},
       {"spool_16_fillet", spool_mesh(16, 0, 0, 0.1)},
-      {"spool_16_bore_fillet_thick_top", spool_mesh(16, 0.2, 0, 0.1, 0.05, 0.2)},
+      {"spool_16_fillet_thick_top", spool_mesh(16, 0, 0, 0.1, 0.05, 0.2)},
       {"pulley_16", revolved_mesh(pulley, 16, "pulley")},
       {"flanged_bushing_16", revolved_mesh(bushing, 16, "bushing")},
       {"stepped_shaft_16", revolved_mesh(shaft, 16, "shaft")},
