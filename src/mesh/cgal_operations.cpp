@@ -141,7 +141,7 @@ struct Piece {
   Vec3 low = Vec3::Zero(), high = Vec3::Zero();  // bounds of def.points
   std::vector<std::pair<Vec3, Real>> planes;     // of def.polygons: unit normal n, n . x
   std::string defect;                            // empty when Block accepts def
-  Real reshaped = 0;  // volume changed by hull_block to make it a valid block (see make_piece)
+  Real reshaped = 0;  // volume changed by trimmed_hull to make it a valid block (make_piece)
 };
 
 // Largest distance of the points from their mean: the size Block measures its tolerance by.
@@ -249,14 +249,16 @@ std::optional<PolyhedronDef> trimmed_hull(const std::vector<Vec3>& points, Real 
   return hull_block(points, weld);
 }
 
-// A piece from a closed, convex shell of exact points and facets (any orientation). Returns
-// nullopt for an empty shell (no volume), which CGAL 5.5 sometimes reports as a volume.
-// `reshape` is the largest volume change allowed to make it a valid block (welded_hull).
-// `weld` is the distance below which the mesh's own coordinates cannot tell points apart, and
-// `rounding` the largest volume change allowed to leave out corners bent by that rounding.
+// How far make_piece may go to make a valid block of a piece: `reshape`, the largest volume
+// change for its welded hull (double rounding); `weld`, the distance below which the mesh's own
+// coordinates cannot tell points apart; `rounding`, the largest volume change to leave out
+// corners bent by the mesh's rounding. Absolute, in the mesh's units.
 struct Tolerances {
   Real reshape = 0, weld = 0, rounding = 0;
 };
+
+// A piece from a closed, convex shell of exact points and facets (any orientation). Returns
+// nullopt for an empty shell (no volume), which CGAL 5.5 sometimes reports as a volume.
 std::optional<Piece> make_piece(const std::vector<ExactPoint>& points,
                                 std::vector<std::vector<int>> facets, const Tolerances& tol) {
   const Real reshape = tol.reshape;
@@ -334,11 +336,10 @@ std::optional<Piece> make_piece(const std::vector<ExactPoint>& points,
   // has quads planar only to 1e-8 or 1e-6 of its size, and CGAL's exact cuts through their
   // diagonals leave corners bent by that much, or short edges where a cut meets a mesh edge
   // near its vertex. The hull without those corners (trimmed_hull) is the piece less slivers of
-  // that thickness; the volume it loses is counted against the mesh's rounding budget.
-  // Nodes closer than the mesh's resolution are welded first: a cut meets a mesh edge a hair
-  // from the mesh's own vertex there.
-  // A piece it would change by more than the budget stays a defective piece, to be joined to a
-  // neighbour (decompose).
+  // that thickness; the volume it loses is counted against the mesh's rounding budget. Nodes
+  // closer than the mesh's resolution are welded first (a cut meets a mesh edge a hair from the
+  // mesh's own vertex there). A piece it would change by more than the budget stays defective,
+  // to be joined to a neighbour (decompose).
   if (auto hull = trimmed_hull(piece.def.points,
                                std::max(tol.weld, kWeldFraction * piece_size(piece.def.points)))) {
     try {
