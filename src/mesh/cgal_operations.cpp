@@ -518,7 +518,8 @@ MeshDecomposition decompose(const TriangleMesh& mesh) {
   }
 
   // Slivers, and pieces Block rejects (too thin for its tolerances), join a neighbour when
-  // their union is convex; otherwise they are dropped if they are negligible in all.
+  // their union is convex; otherwise valid slivers stay blocks and the others are dropped if
+  // they are negligible in all.
   const Real sliver = kSliverFraction * result.mesh_volume;
   std::vector<Piece> blocks, slivers;
   for (Piece& p : pieces)
@@ -559,6 +560,11 @@ MeshDecomposition decompose(const TriangleMesh& mesh) {
       }
     }
     if (joined) continue;
+    // A valid block however small is kept: dropping it would leave a hole in the mesh's volume.
+    if (s.defect.empty()) {
+      blocks.push_back(std::move(s));
+      continue;
+    }
     dropped += s.volume;
     if (first_dropped.empty())
       first_dropped =
@@ -573,7 +579,8 @@ MeshDecomposition decompose(const TriangleMesh& mesh) {
     throw MeshError(e.str());
   }
   // Left: pieces that neither Block nor the hulls above accept (thinner than Block's tolerance,
-  // or bent by more than the rounding budget) and that join no neighbour.
+  // or bent by more than the rounding budget) and that join no neighbour; all the others are
+  // blocks now.
   if (dropped > kDroppedFraction * result.mesh_volume) {
     std::ostringstream e;
     e << mesh.source << ": CGAL's convex decomposition left pieces of volume " << dropped << " ("
