@@ -1,7 +1,8 @@
 // The exact cut of a mesh into convex blocks (CGAL's Nef-polyhedron convex decomposition): the
 // blocks are convex, do not overlap and have the mesh's own volume, centre and second moment
 // (from its surface, independently of any block); the paper's ring cut from its mesh has the
-// ring primitive's mass properties to round-off; bad meshes give MeshError.
+// ring primitive's mass properties to round-off; CAD-like solids of revolution (issue 21's
+// spools), also with float coordinates as read from a file, are cut; bad meshes give MeshError.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -204,6 +205,66 @@ TEST(MeshExact, PaperRingMatchesTheRingPrimitive) {
   report("exact.paper_ring.vs_primitive.second_moment_error", moment_error);
 }
 
+// Issue 21: CAD-like solids of revolution that CGAL cuts into pieces with corners bent by the
+// mesh's rounding (its cones' quads are planar only to rounding). Every one must be cut. With
+// double vertices the bends are 1e-16 and the blocks keep the mesh's volume to 1e-12.
+struct RevolvedPart {
+  std::string name;
+  TriangleMesh mesh;
+};
+
+std::vector<RevolvedPart> revolved_parts() {
+  using testing_support::revolved_mesh;
+  using testing_support::spool_mesh;
+  using Profile = std::vector<std::array<Real, 2>>;  // (r, z), counter-clockwise
+  const Profile pulley{{0.2, 0}, {1, 0}, {1, 0.3}, {0.7, 0.5}, {1, 0.7}, {1, 1}, {0.2, 1}};
+  const Profile bushing{{0.5, 0}, {1, 0}, {1, 0.15}, {0.7, 0.15}, {0.7, 1.2}, {0.5, 1.2}};
+  const Profile shaft{{0, 0},     {0.3, 0},    {0.3, 1},    {0.5, 1},
+                      {0.5, 1.5}, {0.25, 1.5}, {0.25, 2.5}, {0, 2.5}};
+  const Profile washers{{0.3, 0},   {1, 0},     {1, 0.1},   {0.6, 0.1}, {0.6, 0.2},
+                        {0.9, 0.2}, {0.9, 0.3}, {0.5, 0.3}, {0.5, 0.4}, {0.3, 0.4}};
+  return {
+      {"spool_16", spool_mesh(16, 0, 0, 0)},
+      {"spool_16_bore", spool_mesh(16, 0.2, 0, 0)},
+      {"spool_16_chamfer", spool_mesh(16, 0, 0.03, 0)},
+      {"spool_16_bore_chamfer", spool_mesh(16, 0.2, 0.03, 0)},
+      {"spool_16_fillet", spool_mesh(16, 0, 0, 0.1)},
+      {"spool_16_fillet_thick_top", spool_mesh(16, 0, 0, 0.1, 0.05, 0.2)},
+      {"pulley_16", revolved_mesh(pulley, 16, "pulley")},
+      {"flanged_bushing_16", revolved_mesh(bushing, 16, "bushing")},
+      {"stepped_shaft_16", revolved_mesh(shaft, 16, "shaft")},
+      {"washer_stack_16", revolved_mesh(washers, 16, "washers")},
+  };
+}
+
+Real volume_error(const Cut& cut, const TriangleMesh& mesh) {
+  const Real surface = surface_mass_properties(triangles_of(mesh)).volume;
+  return std::abs(combined(cut.blocks).volume - surface) / surface;
+}
+
+TEST(MeshExact, RevolvedPartsAreCut) {
+  for (const RevolvedPart& part : revolved_parts()) {
+    const Cut cut = cut_and_check(part.mesh, part.name);
+    EXPECT_LE(volume_error(cut, part.mesh), 1e-12) << part.name;
+  }
+}
+
+// The same parts as `tem mesh` reads them from a file: vertices rounded to 32-bit floats, so
+// cones' quads bend by about 1e-8 and CGAL's pieces have corners bent by less than Block's
+// tolerance (the spools of issue 21 were refused for these). Their blocks leave out those
+// corners; the volume this changes is bounded by the cutter (1e-9 of the mesh's, kExact here).
+TEST(MeshExact, RevolvedPartsReadAsFloatsAreCut) {
+  for (const RevolvedPart& part : revolved_parts())
+    cut_and_check(testing_support::rounded_to_float(part.mesh), part.name + "_float");
+}
+
+// The same parts as written with 6 significant digits (an OBJ exporter's "%g"): bends of 1e-6
+// are well above Block's tolerance, but cuts meet mesh edges a rounding's width from vertices.
+TEST(MeshExact, RevolvedPartsWithSixDigitsAreCut) {
+  for (const RevolvedPart& part : revolved_parts())
+    cut_and_check(testing_support::rounded_to_digits(part.mesh, 6), part.name + "_6digits");
+}
+
 TEST(MeshExact, BadMeshesGiveMeshError) {
   TriangleMesh open = testing_support::l_mesh();
   open.faces.pop_back();
@@ -247,6 +308,10 @@ TEST(MeshExact, BadMeshesGiveMeshError) {
 TEST(MeshExact, DISABLED_ThousandFaceMeshesTiming) {
   cut_and_check(gear_mesh(32), "gear_32");
   cut_and_check(testing_support::torus_mesh(1.0, 0.3, 32, 16), "torus_32x16");
+  const TriangleMesh spool = testing_support::spool_mesh(24, 0.2, 0.02, 0.08, 0.08, 0.15);
+  const Cut cut = cut_and_check(spool, "spool_24_bore_chamfer_fillet");
+  EXPECT_LE(volume_error(cut, spool), 1e-12);
+  cut_and_check(testing_support::rounded_to_float(spool), "spool_24_bore_chamfer_fillet_float");
 }
 
 }  // namespace

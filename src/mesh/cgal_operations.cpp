@@ -29,6 +29,7 @@
 #include <chrono>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -36,6 +37,7 @@
 #include <unordered_map>
 
 #include "mass/surface_integrals.hpp"
+#include "mesh/hull_polyhedron.hpp"
 
 namespace tem {
 namespace {
@@ -192,12 +194,21 @@ constexpr Real kDroppedFraction = 1e-10;
 // by at most this fraction of the mesh's: what it removes is rounding (nodes 1e-17 apart, faces
 // 1e-16 out of one plane), never a feature of the mesh.
 constexpr Real kReshapeFraction = 1e-14;
+// At most this fraction of the mesh's volume may change, in all, to make valid blocks of pieces
+// whose corners are bent by the mesh's rounding (make_piece, rounded_union): with what may be
+// dropped, still inside the final check's kVolumeTolerance, so that check keeps meaning that
+// CGAL's pieces do not fill the mesh. The most measured is 3.7e-10 (docs/meshes.md).
+constexpr Real kRoundingFraction = 8e-10;
+// Corners are left out of a piece when they come within this factor of breaking one of Block's
+// checks: little above 1, so that as few as possible go, but clear of Block's own rounding.
+constexpr Real kTightMargin = 1.5;
 // Nodes of a piece closer than this (relative to its size) are one node: Block takes them for
 // one point (its own tolerance is 1e-9; twice that keeps a welded cloud clear of it).
 constexpr Real kWeldFraction = 2e-9;
 // The blocks' volumes must add up to the mesh's to this relative tolerance: far above the
 // rounding of CGAL's exact vertices to double, far below any missing or doubled piece.
 constexpr Real kVolumeTolerance = 1e-9;
+static_assert(kRoundingFraction + kDroppedFraction < kVolumeTolerance);
 
 // One convex volume of the decomposition and the block made of it.
 struct Piece {
@@ -206,7 +217,18 @@ struct Piece {
   Vec3 low = Vec3::Zero(), high = Vec3::Zero();  // bounds of def.points
   std::vector<std::pair<Vec3, Real>> planes;     // of def.polygons: unit normal n, n . x
   std::string defect;                            // empty when Block accepts def
+  Real reshaped = 0;  // volume changed by trimmed_hull to make it a valid block (make_piece)
 };
+
+// Largest distance of the points from their mean: the size Block measures its tolerance by.
+Real piece_size(const std::vector<Vec3>& points) {
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& p : points) mean += p;
+  mean /= static_cast<Real>(std::max<size_t>(points.size(), 1));
+  Real size = 0;
+  for (const Vec3& p : points) size = std::max(size, (p - mean).norm());
+  return size;
+}
 
 std::string describe_point(const Vec3& p) {
   std::ostringstream s;
@@ -295,11 +317,27 @@ std::optional<std::pair<PolyhedronDef, Real>> welded_hull(const std::vector<Vec3
   }
 }
 
+// The hull of the points less the fewest corners that keep Block from accepting it: first
+// those within 1.5 times Block's tolerance of breaking a check, then, where Block still refuses
+// that hull, within 10 times (hull_block's default margin).
+std::optional<PolyhedronDef> trimmed_hull(const std::vector<Vec3>& points, Real weld) {
+  if (auto tight = hull_block(points, weld, kTightMargin)) return tight;
+  return hull_block(points, weld);
+}
+
+// How far make_piece may go to make a valid block of a piece: `reshape`, the largest volume
+// change for its welded hull (double rounding); `weld`, the distance below which the mesh's own
+// coordinates cannot tell points apart; `rounding`, the largest volume change to leave out
+// corners bent by the mesh's rounding. Absolute, in the mesh's units.
+struct Tolerances {
+  Real reshape = 0, weld = 0, rounding = 0;
+};
+
 // A piece from a closed, convex shell of exact points and facets (any orientation). Returns
 // nullopt for an empty shell (no volume), which CGAL 5.5 sometimes reports as a volume.
-// `reshape` is the largest volume change allowed to make it a valid block (welded_hull).
 std::optional<Piece> make_piece(const std::vector<ExactPoint>& points,
-                                std::vector<std::vector<int>> facets, Real reshape) {
+                                std::vector<std::vector<int>> facets, const Tolerances& tol) {
+  const Real reshape = tol.reshape;
   if (points.empty()) return std::nullopt;
   Exact::FT volume = 0;
   for (const auto& facet : facets)
@@ -367,11 +405,35 @@ std::optional<Piece> make_piece(const std::vector<ExactPoint>& points,
     piece.def = std::move(hull->first);
     piece.defect.clear();
     set_geometry(piece);
+    return piece;
+  }
+  // Still rejected: corners bent by more than double rounding but less than Block's tolerance.
+  // A mesh written as 32-bit floats (binary STL) or with few digits (an OBJ exporter's "%g")
+  // has quads planar only to 1e-8 or 1e-6 of its size, and CGAL's exact cuts through their
+  // diagonals leave corners bent by that much, or short edges where a cut meets a mesh edge
+  // near its vertex. The hull without those corners (trimmed_hull) is the piece less slivers of
+  // that thickness; the volume it loses is counted against the mesh's rounding budget. Nodes
+  // closer than the mesh's resolution are welded first (a cut meets a mesh edge a hair from the
+  // mesh's own vertex there). A piece it would change by more than the budget stays defective,
+  // to be joined to a neighbour (decompose).
+  if (auto hull = trimmed_hull(piece.def.points,
+                               std::max(tol.weld, kWeldFraction * piece_size(piece.def.points)))) {
+    try {
+      const Real volume = Block(*hull).volume();
+      if (std::abs(volume - piece.volume) <= tol.rounding) {
+        piece.reshaped = std::abs(volume - piece.volume);
+        piece.volume = volume;
+        piece.def = std::move(*hull);
+        piece.defect.clear();
+        set_geometry(piece);
+      }
+    } catch (const GeometryError&) {
+    }
   }
   return piece;
 }
 
-std::optional<Piece> piece_from_polyhedron(const ExactPolyhedron& shell, Real reshape) {
+std::optional<Piece> piece_from_polyhedron(const ExactPolyhedron& shell, const Tolerances& tol) {
   std::vector<ExactPoint> points;
   std::unordered_map<const void*, int> index;
   for (auto v = shell.vertices_begin(); v != shell.vertices_end(); ++v) {
@@ -386,7 +448,7 @@ std::optional<Piece> piece_from_polyhedron(const ExactPolyhedron& shell, Real re
     while (++h != f->facet_begin());
     facets.push_back(std::move(facet));
   }
-  return make_piece(points, std::move(facets), reshape);
+  return make_piece(points, std::move(facets), tol);
 }
 
 // The union of two pieces that meet, as one block, when that union is convex: then their convex
@@ -399,6 +461,26 @@ std::optional<Piece> convex_union(const Piece& a, const Piece& b, Real reshape) 
   Piece joined;
   joined.def = std::move(hull->first);
   joined.volume = a.volume + b.volume;
+  set_geometry(joined);
+  return joined;
+}
+
+// The union of two pieces as the block trimmed_hull makes of their nodes (corners bent by less
+// than Block's tolerance left out), when its volume differs from theirs by at most `budget`.
+std::optional<Piece> rounded_union(const Piece& a, const Piece& b, Real budget, Real weld) {
+  std::vector<Vec3> points = a.def.points;
+  points.insert(points.end(), b.def.points.begin(), b.def.points.end());
+  auto hull = trimmed_hull(points, std::max(weld, kWeldFraction * piece_size(points)));
+  if (!hull) return std::nullopt;
+  Piece joined;
+  try {
+    joined.volume = Block(*hull).volume();
+  } catch (const GeometryError&) {
+    return std::nullopt;
+  }
+  joined.reshaped = std::abs(joined.volume - (a.volume + b.volume));
+  if (joined.reshaped > budget) return std::nullopt;
+  joined.def = std::move(*hull);
   set_geometry(joined);
   return joined;
 }
@@ -463,6 +545,24 @@ Real check_input(const TriangleMesh& mesh, const Surface& surface) {
   return volume;
 }
 
+// The distance below which the mesh's coordinates cannot tell two points apart: a few units in
+// the last place of its largest coordinate, as 32-bit floats when every coordinate is one (a
+// binary STL, or a reader that delivers floats) or as doubles.
+Real resolution(const TriangleMesh& mesh) {
+  Real largest = 0;
+  bool floats = true;
+  for (const Vec3& v : mesh.vertices)
+    for (int k = 0; k < 3; ++k) {
+      largest = std::max(largest, std::abs(v[k]));
+      // Through a volatile: g++ 12.2 at -O2 may drop a double -> float -> double round trip.
+      const volatile float rounded = static_cast<float>(v[k]);
+      floats = floats && rounded == v[k];
+    }
+  const Real unit =
+      floats ? std::numeric_limits<float>::epsilon() : std::numeric_limits<Real>::epsilon();
+  return 4 * unit * largest;
+}
+
 MeshDecomposition decompose(const TriangleMesh& mesh) {
   MeshDecomposition result;
   if (mesh.faces.empty()) throw MeshError(mesh.source + ": the mesh has no faces");
@@ -478,6 +578,8 @@ MeshDecomposition decompose(const TriangleMesh& mesh) {
   // The first volume of a Nef polyhedron is the unbounded one outside; the others that are
   // marked are inside the mesh, each convex after the decomposition, with one shell.
   const Real reshape = kReshapeFraction * result.mesh_volume;
+  const Real rounding = kRoundingFraction * result.mesh_volume;
+  const Real weld = resolution(mesh);
   std::vector<Piece> pieces;
   auto volume = nef.volumes_begin();
   for (++volume; volume != nef.volumes_end(); ++volume) {
@@ -487,11 +589,13 @@ MeshDecomposition decompose(const TriangleMesh& mesh) {
                       "a cavity (not convex)");
     ExactPolyhedron shell;
     nef.convert_inner_shell_to_polyhedron(volume->shells_begin(), shell);
-    if (auto piece = piece_from_polyhedron(shell, reshape)) pieces.push_back(std::move(*piece));
+    if (auto piece = piece_from_polyhedron(shell, {reshape, weld, rounding}))
+      pieces.push_back(std::move(*piece));
   }
 
   // Slivers, and pieces Block rejects (too thin for its tolerances), join a neighbour when
-  // their union is convex; otherwise they are dropped if they are negligible in all.
+  // their union is convex; otherwise valid slivers stay blocks and the others are dropped if
+  // they are negligible in all.
   const Real sliver = kSliverFraction * result.mesh_volume;
   std::vector<Piece> blocks, slivers;
   for (Piece& p : pieces)
@@ -502,10 +606,15 @@ MeshDecomposition decompose(const TriangleMesh& mesh) {
     high = high.cwiseMax(p);
   }
   const Real margin = kVolumeTolerance * (high - low).norm();
+  // What making valid blocks changed: hulls without corners bent by rounding (make_piece),
+  // thin pieces joined to a neighbour into a hull a hair larger than both, thin pieces dropped.
+  Real reshaped = 0;
+  for (const Piece& p : blocks) reshaped += p.reshaped;
   Real dropped = 0;
   std::string first_dropped;
-  for (const Piece& s : slivers) {
+  for (Piece& s : slivers) {
     ++result.merged_slivers;
+    reshaped += s.reshaped;
     bool joined = false;
     for (Piece& b : blocks) {
       if (!boxes_meet(b, s, margin)) continue;
@@ -515,17 +624,49 @@ MeshDecomposition decompose(const TriangleMesh& mesh) {
         break;
       }
     }
+    // A piece thinner than Block's tolerance next to a face bent by rounding: the hull of the
+    // two, less the bent corners, differs from them by slivers of the rounding's thickness.
+    for (Piece& b : blocks) {
+      if (joined) break;
+      if (!boxes_meet(b, s, margin) || !faces_meet(b, s, margin)) continue;
+      if (auto both = rounded_union(b, s, rounding - reshaped - dropped, weld)) {
+        reshaped += both->reshaped;
+        b = std::move(*both);
+        joined = true;
+      }
+    }
     if (joined) continue;
+    // A valid block however small is kept: dropping it would leave a hole in the mesh's volume.
+    if (s.defect.empty()) {
+      blocks.push_back(std::move(s));
+      continue;
+    }
     dropped += s.volume;
     if (first_dropped.empty())
       first_dropped =
           "near " + describe_point(s.low) + (s.defect.empty() ? "" : " (" + s.defect + ")");
   }
-  if (dropped > kDroppedFraction * result.mesh_volume)
-    throw MeshError(mesh.source + ": CGAL's convex decomposition left thin pieces of volume " +
-                    std::to_string(dropped) + " (" + std::to_string(dropped / result.mesh_volume) +
-                    " of the mesh) that join no neighbour into a convex block, e.g. " +
-                    first_dropped);
+  if (reshaped > rounding) {
+    std::ostringstream e;
+    e << mesh.source << ": leaving out the corners of CGAL's pieces that the mesh's rounding "
+      << "bends by less than Block's tolerance changes the volume by "
+      << reshaped / result.mesh_volume << " of the mesh's, more than the " << kRoundingFraction
+      << " allowed";
+    throw MeshError(e.str());
+  }
+  // Left: pieces that neither Block nor the hulls above accept (thinner than Block's tolerance,
+  // or bent by more than the rounding budget) and that join no neighbour; all the others are
+  // blocks now.
+  if (dropped > kDroppedFraction * result.mesh_volume) {
+    std::ostringstream e;
+    e << mesh.source << ": CGAL's convex decomposition left pieces of volume " << dropped << " ("
+      << dropped / result.mesh_volume
+      << " of the mesh) that Block refuses, whose hull less their corners bent by rounding "
+         "would change the volume by more than "
+      << kRoundingFraction << " of the mesh's, and that join no neighbour into a convex block, "
+      << "e.g. " << first_dropped;
+    throw MeshError(e.str());
+  }
   if (dropped > 0) {
     std::ostringstream w;
     w << mesh.source << ": dropped thin pieces of CGAL's convex decomposition, volume " << dropped

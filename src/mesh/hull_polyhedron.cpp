@@ -136,14 +136,14 @@ std::vector<Vec3> welded(const std::vector<Vec3>& points, Real weld) {
 // The vertices that would make Block refuse the polyhedron (or come close to it), by Block's
 // own measures: size about the mean of the points, Newell normals, planes through the loops'
 // centres. Nothing when the polyhedron is too flat to be a block at all.
-std::optional<std::vector<bool>> flawed_vertices(const PolyhedronDef& def) {
+std::optional<std::vector<bool>> flawed_vertices(const PolyhedronDef& def, Real margin) {
   const std::vector<Vec3>& pts = def.points;
   Vec3 mean = Vec3::Zero();
   for (const Vec3& p : pts) mean += p;
   mean /= static_cast<Real>(pts.size());
   Real size = 0;
   for (const Vec3& p : pts) size = std::max(size, (p - mean).norm());
-  const Real strict = 10 * kBlockTolerance * size, flat = kBlockTolerance * size / 10;
+  const Real strict = margin * kBlockTolerance * size, flat = kBlockTolerance * size / margin;
 
   Real volume = 0;
   for (const auto& loop : def.polygons)
@@ -200,7 +200,7 @@ Real hull_volume(const std::vector<Vec3>& points) {
   return hull.qh()->totvol;
 }
 
-std::optional<PolyhedronDef> hull_block(const std::vector<Vec3>& points, Real weld) {
+std::optional<PolyhedronDef> hull_block(const std::vector<Vec3>& points, Real weld, Real margin) {
   // Only the hull's vertices matter; weld those (far fewer than the points).
   std::optional<PolyhedronDef> def = qhull_polyhedron(points);
   if (!def) return std::nullopt;
@@ -208,7 +208,7 @@ std::optional<PolyhedronDef> hull_block(const std::vector<Vec3>& points, Real we
   for (int round = 0; round < kMaxRounds; ++round) {
     def = qhull_polyhedron(kept);
     if (!def) return std::nullopt;
-    const auto flawed = flawed_vertices(*def);
+    const auto flawed = flawed_vertices(*def, margin);
     if (!flawed) return std::nullopt;
     if (std::find(flawed->begin(), flawed->end(), true) == flawed->end()) {
       try {

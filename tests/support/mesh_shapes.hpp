@@ -3,8 +3,11 @@
 // format the reader takes. Every mesh is outward-oriented (counter-clockwise seen from outside).
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -127,6 +130,109 @@ inline TriangleMesh union_surface(const std::vector<PolyhedronDef>& parts, const
 inline TriangleMesh paper_ring_mesh(Real radius = 0.3, Real section_radius = 0.05,
                                     Axis axis = Axis::z) {
   return union_surface(polygonal_ring(16, 6, radius, section_radius, 16, axis, false), "paper ring");
+}
+
+// A solid of revolution about z: the closed profile `profile` of (r, z) points, counter-clockwise
+// in the (r, z) plane, swept in `segments` steps. Points with r = 0 are poles (one vertex); the
+// others give a ring of vertices each. Each quad of the sweep is two triangles, as CAD exporters
+// write it: planar quads (flanges, cylinders) are split along a diagonal, cones only nearly so.
+inline TriangleMesh revolved_mesh(const std::vector<std::array<Real, 2>>& profile, int segments,
+                                  const std::string& source) {
+  TriangleMesh mesh;
+  mesh.source = source;
+  std::vector<std::vector<int>> ring;  // vertex of profile point i at step k
+  for (const auto& [r, z] : profile) {
+    std::vector<int> row;
+    if (r == 0) {
+      row.assign(static_cast<size_t>(segments), static_cast<int>(mesh.vertices.size()));
+      mesh.vertices.push_back(Vec3(0, 0, z));
+    } else {
+      for (int k = 0; k < segments; ++k) {
+        const Real t = 2 * std::numbers::pi * k / segments;
+        row.push_back(static_cast<int>(mesh.vertices.size()));
+        mesh.vertices.push_back(Vec3(r * std::cos(t), r * std::sin(t), z));
+      }
+    }
+    ring.push_back(row);
+  }
+  const size_t m = profile.size();
+  for (size_t i = 0; i < m; ++i)
+    for (int k = 0; k < segments; ++k) {
+      const size_t j = (i + 1) % m, k0 = static_cast<size_t>(k);
+      const size_t k1 = static_cast<size_t>((k + 1) % segments);
+      // Seen from outside, the counter-clockwise profile sweeps clockwise.
+      const int a = ring[i][k0], b = ring[i][k1], c = ring[j][k1], d = ring[j][k0];
+      for (const std::array<int, 3>& t : {std::array<int, 3>{a, b, c}, std::array<int, 3>{a, c, d}})
+        if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0]) mesh.faces.push_back(t);
+    }
+  return mesh;
+}
+
+// A spool (the shape of issue 21): two flanges of radius 1 and thicknesses `bottom` and `top`
+// on a hub of radius `hub`, length 1 in all, a bore of radius `bore` (0: none), the flanges'
+// outer rims chamfered by `chamfer` (0: none) and the hub joined to each flange by a quarter
+// circle of radius `fillet` in `fillet_steps` steps (0: a sharp corner).
+inline TriangleMesh spool_mesh(int segments, Real bore, Real chamfer, Real fillet,
+                               Real bottom = 0.1, Real top = 0.1, Real hub = 0.4,
+                               int fillet_steps = 4) {
+  std::vector<std::array<Real, 2>> p{{bore, 0}};
+  auto rim = [&](Real z0, Real z1) {  // the flange's outer edge, from z0 to z1
+    const Real s = z1 > z0 ? 1 : -1;
+    if (chamfer > 0) {
+      p.push_back({1 - chamfer, z0});
+      p.push_back({1, z0 + s * chamfer});
+      p.push_back({1, z1 - s * chamfer});
+      p.push_back({1 - chamfer, z1});
+    } else {
+      p.push_back({1, z0});
+      p.push_back({1, z1});
+    }
+  };
+  auto corner = [&](Real z, Real s, bool into_hub) {  // flange face at z meets the hub
+    if (fillet <= 0) {
+      p.push_back({hub, z});
+      return;
+    }
+    for (int k = 0; k <= fillet_steps; ++k) {
+      const Real a = std::numbers::pi / 2 * k / fillet_steps;
+      const Real along = into_hub ? a : std::numbers::pi / 2 - a;
+      p.push_back(
+          {hub + fillet - fillet * std::sin(along), z + s * (fillet - fillet * std::cos(along))});
+    }
+  };
+  rim(0, bottom);
+  corner(bottom, 1, true);
+  corner(1 - top, -1, false);
+  rim(1 - top, 1);
+  p.push_back({bore, 1});
+  return revolved_mesh(p, segments, "spool");
+}
+
+// The mesh with its vertices rounded to 32-bit floats, as the mesh reader delivers a file's
+// (Assimp reads coordinates as floats): planar quads then bend by about 1e-8 of the size. The
+// float goes through a volatile: g++ 12.2's SLP vectorizer at -O2 drops the round trip of such
+// a loop (see test_mesh_reading.cpp).
+inline TriangleMesh rounded_to_float(TriangleMesh mesh) {
+  for (Vec3& v : mesh.vertices)
+    for (int k = 0; k < 3; ++k) {
+      const volatile float rounded = static_cast<float>(v[k]);
+      v[k] = rounded;
+    }
+  mesh.source += " (float)";
+  return mesh;
+}
+
+// The mesh with its vertices rounded to `digits` significant decimal digits, as many exporters
+// write OBJ files ("%g": 6): planar quads then bend by about 1e-6 of the size.
+inline TriangleMesh rounded_to_digits(TriangleMesh mesh, int digits) {
+  for (Vec3& v : mesh.vertices)
+    for (int k = 0; k < 3; ++k) {
+      char text[40];
+      std::snprintf(text, sizeof text, "%.*g", digits, v[k]);
+      v[k] = std::strtod(text, nullptr);
+    }
+  mesh.source += " (" + std::to_string(digits) + " digits)";
+  return mesh;
 }
 
 // Writers for the reader's formats, so tests read real files without committing any.
