@@ -36,6 +36,26 @@ Real hull_below(const std::vector<Vec3>& cloud, const Vec3& normal, Real offset,
 
 }  // namespace
 
+std::vector<Vec3> thinned_cloud(const std::vector<Vec3>& points, int cells) {
+  if (points.empty()) return {};
+  Vec3 lo = points[0], hi = points[0];
+  for (const Vec3& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Real cell = (hi - lo).maxCoeff() / cells;
+  if (!(cell > 0)) return {points[0]};
+  std::unordered_set<std::array<long long, 3>, CellHash> taken;
+  std::vector<Vec3> cloud;
+  for (const Vec3& p : points) {
+    const Vec3 c = (p - lo) / cell;
+    if (taken.insert({static_cast<long long>(c.x()), static_cast<long long>(c.y()),
+                      static_cast<long long>(c.z())}).second)
+      cloud.push_back(p);
+  }
+  return cloud;
+}
+
 Real lookahead_gain(const std::vector<Vec3>& corners) {
   if (corners.size() < 4) return 0;
   Vec3 lo = corners[0], hi = corners[0];
@@ -45,14 +65,7 @@ Real lookahead_gain(const std::vector<Vec3>& corners) {
   }
   const Real cell = (hi - lo).maxCoeff() / kCloudCells;
   if (!(cell > 0)) return 0;
-  std::unordered_set<std::array<long long, 3>, CellHash> taken;
-  std::vector<Vec3> cloud;
-  for (const Vec3& p : corners) {
-    const Vec3 c = (p - lo) / cell;
-    if (taken.insert({static_cast<long long>(c.x()), static_cast<long long>(c.y()),
-                      static_cast<long long>(c.z())}).second)
-      cloud.push_back(p);
-  }
+  const std::vector<Vec3> cloud = thinned_cloud(corners, kCloudCells);
   Vec3 mean = Vec3::Zero();
   for (const Vec3& p : cloud) mean += p;
   mean /= static_cast<Real>(cloud.size());

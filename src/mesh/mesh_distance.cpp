@@ -210,4 +210,18 @@ Real largest_outside_distance(const MeshDistance& distance, const std::vector<Po
   return result;
 }
 
+Real sampled_outside_distance(const MeshDistance& distance, const PolyhedronDef& block) {
+  Real result = 0;
+  for (const Vec3& p : block.points) result = std::max(result, distance.signed_distance(p));
+  for (const auto& loop : block.polygons)
+    for (size_t k = 1; k + 1 < loop.size(); ++k) {
+      const Vec3 &a = block.points[loop[0]], &b = block.points[loop[k]],
+                 &c = block.points[loop[k + 1]];
+      for (const Vec3& p :
+           {Vec3((a + b + c) / 3), Vec3((a + b) / 2), Vec3((b + c) / 2), Vec3((c + a) / 2)})
+        result = std::max(result, distance.signed_distance(p));
+    }
+  return result;
+}
+
 }  // namespace tem

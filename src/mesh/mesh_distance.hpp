@@ -42,4 +42,9 @@ class MeshDistance {
 Real largest_outside_distance(const MeshDistance& distance, const std::vector<PolyhedronDef>& blocks,
                               Real precision);
 
+// A quick lower bound of largest_outside_distance for one block: the largest distance at its
+// faces' corners, centres and edge midpoints (a fan of triangles per face), not refined. Good
+// enough to rank candidate blocks against each other, not to report.
+Real sampled_outside_distance(const MeshDistance& distance, const PolyhedronDef& block);
+
 }  // namespace tem
