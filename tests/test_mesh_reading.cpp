@@ -24,6 +24,7 @@
 #include "mesh/mesh_check.hpp"
 #include "mesh/mesh_reader.hpp"
 #include "mesh/polygon_triangulation.hpp"
+#include "support/mesh_check_error.hpp"
 #include "support/mesh_shapes.hpp"
 
 namespace tem {
@@ -81,17 +82,6 @@ TriangleMesh combined(TriangleMesh a, const TriangleMesh& b) {
 TriangleMesh inverted(TriangleMesh mesh) {
   for (auto& f : mesh.faces) std::swap(f[1], f[2]);
   return mesh;
-}
-
-// The message of the MeshError that check_mesh() throws (fails the test if none is thrown).
-std::string check_error(TriangleMesh mesh) {
-  try {
-    check_mesh(mesh);
-  } catch (const MeshError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "check_mesh accepted " << mesh.source;
-  return "";
 }
 
 template <class Read>

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "mesh/mesh_check.hpp"
+#include "support/mesh_check_error.hpp"
 #include "support/mesh_shapes.hpp"
 
 namespace tem {
@@ -61,16 +62,6 @@ void weld(TriangleMesh& mesh) {
   for (auto& f : mesh.faces)
     for (int& v : f)
       if (v < static_cast<int>(to.size())) v = to[v];
-}
-
-std::string check_error(TriangleMesh mesh) {
-  try {
-    check_mesh(mesh);
-  } catch (const MeshError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "check_mesh accepted " << mesh.source;
-  return "";
 }
 
 std::string first_line(const std::string& message) { return message.substr(0, message.find('\n')); }
