@@ -153,6 +153,10 @@ struct ContactDef {
   // default), 0 for none (contact only after overlap).
   std::optional<Real> margin;
   ContactSolver solver = ContactSolver::rows;
+  // Sub-steps of a step (contact_margins.hpp, refreshed_patches.hpp): contacts are detected once per
+  // step, then solved and integrated this many times at time_step / substeps, each sub-step
+  // carrying the detected points with the bodies. 1: one solve per detection, as before.
+  int substeps = 1;
   // Coefficients of named pairs of materials (process_def.hpp), overriding the rule for pairs
   // without an entry.
   std::vector<MaterialPairDef> pairs;
@@ -203,6 +207,11 @@ struct SceneDef {
   std::vector<OutletDef> outlets;
   std::vector<SensorDef> sensors;
 };
+
+// The time one solve and one integration cover: the time step, or its part with sub-steps.
+inline Real substep_time(const SceneDef& scene) {
+  return scene.time_step / scene.contact.substeps;
+}
 
 // A problem in a scene that names where: `path` is the JSON path (e.g. "bodies[1].shape.radius").
 class SceneError : public std::runtime_error {

@@ -154,6 +154,28 @@ void clip_faces(const Block& ref, const std::vector<Vec3>& ref_nodes, const Vec3
   }
 }
 
+// The face manifold of out.feature (face_of_a or face_of_b, out.feature_a/_b its face): the
+// other block's incident face clipped against it, its corners within the margin kept.
+bool clip_reference_face(const Block& a, const WorldBlock& wa, const Block& b,
+                         const WorldBlock& wb, Real margin, ManifoldScratch& s, Manifold& out) {
+  std::vector<Vec3>& candidates = s.candidates;
+  std::vector<Real>& gaps = s.candidate_gaps;
+  if (out.feature == ManifoldFeature::face_of_b) {
+    const int face = out.feature_b;
+    clip_faces(b, wb.nodes, wb.normals[face], wb.offsets[face], face, a, wa.nodes, wa.normals,
+               margin, s, candidates, gaps);
+    out.normal = -wb.normals[face];
+  } else {
+    const int face = out.feature_a;
+    clip_faces(a, wa.nodes, wa.normals[face], wa.offsets[face], face, b, wb.nodes, wb.normals,
+               margin, s, candidates, gaps);
+    out.normal = wa.normals[face];
+  }
+  if (candidates.empty()) return false;
+  keep(candidates, gaps, out);
+  return true;
+}
+
 }  // namespace
 
 void place_block(const Block& block, const BlockPose& pose, WorldBlock& out) {
@@ -239,8 +261,6 @@ bool block_manifold(const Block& a, const WorldBlock& wa, const Block& b, const 
   // between nearly equal axes from step to step would shake a resting body.
   const Real tolerance = 0.005 * std::min(a.bounding_radius(), b.bounding_radius());
   const Real face_best = std::max(face_a.separation, face_b.separation);
-  std::vector<Vec3>& candidates = s.candidates;
-  std::vector<Real>& gaps = s.candidate_gaps;
   if (edges.edge_a >= 0 && edges.separation > face_best + tolerance) {
     const Vec3& pa = wa.nodes[wa.edge_node[edges.edge_a]];
     const Vec3& pb = wb.nodes[wb.edge_node[edges.edge_b]];
@@ -250,20 +270,80 @@ bool block_manifold(const Block& a, const WorldBlock& wa, const Block& b, const 
     out.count = 1;
     out.point[0] = 0.5 * (ca + cb);
     out.gap[0] = edges.separation;
+    out.feature = ManifoldFeature::edges;
+    out.feature_a = edges.edge_a;
+    out.feature_b = edges.edge_b;
     return true;
   }
   if (face_b.separation > face_a.separation + tolerance) {
-    clip_faces(b, wb.nodes, wb.normals[face_b.face], wb.offsets[face_b.face], face_b.face, a,
-               wa.nodes, wa.normals, margin, s, candidates, gaps);
-    out.normal = -wb.normals[face_b.face];
+    out.feature = ManifoldFeature::face_of_b;
+    out.feature_a = -1;
+    out.feature_b = face_b.face;
   } else {
-    clip_faces(a, wa.nodes, wa.normals[face_a.face], wa.offsets[face_a.face], face_a.face, b,
-               wb.nodes, wb.normals, margin, s, candidates, gaps);
-    out.normal = wa.normals[face_a.face];
+    out.feature = ManifoldFeature::face_of_a;
+    out.feature_a = face_a.face;
+    out.feature_b = -1;
   }
-  if (candidates.empty()) return false;
-  keep(candidates, gaps, out);
-  return true;
+  return clip_reference_face(a, wa, b, wb, margin, s, out);
+}
+
+bool rebuild_manifold(const Block& a, const WorldBlock& wa, const Block& b, const WorldBlock& wb,
+                      Real margin, const Manifold& detected, ManifoldScratch& s, Manifold& out) {
+  out.count = 0;
+  out.feature = detected.feature;
+  out.feature_a = detected.feature_a;
+  out.feature_b = detected.feature_b;
+  // The cached features hold while they are still the blocks' supports along their axis: the
+  // edges the extreme points of both blocks along the edge axis, the incident face's corners
+  // the deepest of its block below the reference plane. Once the blocks have turned so that
+  // another node lies beyond them (a rim that was edge on edge now lying face on face), the
+  // cached gap would be too large, so the pair is searched again in full.
+  const Real tolerance = 1e-6 * std::min(a.bounding_radius(), b.bounding_radius());
+  if (detected.feature == ManifoldFeature::edges) {
+    const int i = detected.feature_a, j = detected.feature_b;
+    const Vec3& pa = wa.nodes[wa.edge_node[i]];
+    const Vec3& pb = wb.nodes[wb.edge_node[j]];
+    const Vec3 &da = wa.edge_direction[i], &db = wb.edge_direction[j];
+    Vec3 axis = da.cross(db);
+    const Real length = axis.norm();
+    if (length > 1e-6 * da.norm() * db.norm()) {
+      axis /= length;
+      if (axis.dot(pa - wa.centre) < 0) axis = -axis;  // out of A, as best_edges orients it
+      const Real separation = axis.dot(pb - pa);
+      Real highest_a = -kInfinity, lowest_b = kInfinity;
+      for (const Vec3& p : wa.nodes) highest_a = std::max(highest_a, axis.dot(p));
+      for (const Vec3& p : wb.nodes) lowest_b = std::min(lowest_b, axis.dot(p));
+      if (lowest_b - highest_a >= separation - tolerance) {
+        if (separation > margin) return false;
+        const auto [ca, cb] = closest_points(pa, da, pb, db);
+        out.normal = axis;
+        out.count = 1;
+        out.point[0] = 0.5 * (ca + cb);
+        out.gap[0] = separation;
+        return true;
+      }
+    }
+    // Turned parallel or no longer the supports: the whole search.
+    return block_manifold(a, wa, b, wb, margin, s, out);
+  }
+  if (detected.feature != ManifoldFeature::face_of_a &&
+      detected.feature != ManifoldFeature::face_of_b)
+    return false;
+  const bool of_b = detected.feature == ManifoldFeature::face_of_b;
+  const int face = of_b ? detected.feature_b : detected.feature_a;
+  const WorldBlock& reference = of_b ? wb : wa;
+  const WorldBlock& other = of_b ? wa : wb;
+  Real lowest = kInfinity;
+  for (const Vec3& p : other.nodes)
+    lowest = std::min(lowest, reference.normals[face].dot(p) - reference.offsets[face]);
+  if (lowest > margin) return false;
+  if (!clip_reference_face(a, wa, b, wb, margin, s, out)) out.count = 0;
+  Real shallowest_kept = kInfinity;
+  for (int k = 0; k < out.count; ++k) shallowest_kept = std::min(shallowest_kept, out.gap[k]);
+  if (out.count > 0 && lowest >= shallowest_kept - tolerance) return true;
+  // A node deeper than the clipped face's corners (or none of them within the margin while a
+  // node is): the whole search.
+  return block_manifold(a, wa, b, wb, margin, s, out);
 }
 
 bool block_manifold(const Block& a, const BlockPose& pose_a, const Block& b,
@@ -314,6 +394,7 @@ bool wall_manifold(const Block& block, const WorldBlock& world, const Vec3& wall
   }
   if (!has_deepest) add(deepest);
   out.normal = -wall_normal;
+  out.feature = ManifoldFeature::wall;
   keep(candidates, gaps, out);
   return out.count > 0;
 }

@@ -21,6 +21,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "collision/block_pose.hpp"
@@ -30,12 +31,22 @@ namespace tem {
 
 inline constexpr int kManifoldPoints = 4;
 
+// Which features made a manifold: the pair of edges whose cross product is its normal, the
+// reference face of A or of B that the other block's incident face was clipped against, or a
+// wall. A sub-step rebuilds the manifold from them at the bodies' new poses without searching
+// the axes again (rebuild_manifold, refreshed_patches.hpp).
+enum class ManifoldFeature : std::uint8_t { none, edges, face_of_a, face_of_b, wall };
+
 struct Manifold {
   Vec3 normal = Vec3::UnitZ();  // unit, from A into B (the force on A acts along -normal)
   int count = 0;
   std::array<Vec3, kManifoldPoints> point = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(),
                                              Vec3::Zero()};  // world, midway between surfaces
   std::array<Real, kManifoldPoints> gap{};    // > 0 apart, < 0 overlapping
+  ManifoldFeature feature = ManifoldFeature::none;
+  // The edges (indices into WorldBlock's edge lists) or the reference face (a polygon index of
+  // its block; the other -1).
+  int feature_a = -1, feature_b = -1;
 };
 
 // A block placed in the world for one step: what every pair it is in reads, computed once.
@@ -68,6 +79,14 @@ bool block_manifold(const Block& a, const WorldBlock& world_a, const Block& b,
 bool block_manifold(const Block& a, const BlockPose& pose_a, const Block& b,
                     const BlockPose& pose_b, Real margin, ManifoldScratch& scratch,
                     Manifold& out);
+
+// The manifold of the features that made `detected` (same edge pair, or same reference face
+// with the incident face chosen again), at the blocks' placements `world_a`, `world_b`, within
+// `margin`: what the whole search would find while the pair's relative pose has changed too
+// little for another axis to win. False, with count 0, when nothing is within the margin.
+bool rebuild_manifold(const Block& a, const WorldBlock& world_a, const Block& b,
+                      const WorldBlock& world_b, Real margin, const Manifold& detected,
+                      ManifoldScratch& scratch, Manifold& out);
 
 // The patch of a convex block and a wall plane (normal into the space where bodies live; the
 // patch normal is then -wall_normal): the corners of the block's face most opposed to the wall,

@@ -25,7 +25,15 @@ struct ContactPatch {
   // points, each with its own gap; its depth is then minus the smallest gap (< 0: still apart).
   // count 0 for a patch of overlap features.
   Manifold manifold;
+  // With contact before overlap: the block instances (indices into Model::bodies[body].blocks)
+  // whose pair made the patch, from which a sub-step rebuilds it (refreshed_patches.hpp); -1
+  // for a wall's side.
+  int block_a = -1, block_b = -1;
 };
+
+// The patch of a manifold of contact before overlap: its points' mean, minus its smallest gap as
+// depth, the bounds of its points (bodies, walls and blocks are the caller's to set).
+ContactPatch manifold_patch(const Manifold& m);
 
 // The order of a step's patches (detect_contacts.cpp sorts them so) and of everything made from
 // them: points, friction, penalty springs, contact memory gathered over ranks. By body A, body

@@ -5,9 +5,7 @@
 #include "support/parallel.hpp"
 
 namespace tem {
-namespace {
 
-// A patch of contact before overlap from a manifold.
 ContactPatch manifold_patch(const Manifold& m) {
   ContactPatch p;
   p.normal = m.normal;
@@ -26,8 +24,6 @@ ContactPatch manifold_patch(const Manifold& m) {
   p.depth = -smallest_gap;
   return p;
 }
-
-}  // namespace
 
 PatchVariant patch_variant(const SceneDef& scene) {
   return scene.contact.normals == PatchNormals::paper ? NormalVariant::paper
@@ -89,6 +85,8 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
             out.push_back(manifold_patch(m));
             out.back().body_a = body_a;
             out.back().body_b = body_b;
+            out.back().block_a = proxies[pair.a].instance;
+            out.back().block_b = proxies[pair.b].instance;
           }
           continue;
         }
@@ -110,6 +108,7 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
             out.push_back(manifold_patch(m));
             out.back().body_a = body;
             out.back().wall = pair.wall;
+            out.back().block_a = proxies[pair.proxy].instance;
           }
           continue;
         }

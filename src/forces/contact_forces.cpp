@@ -78,10 +78,9 @@ void match_radii(const Model& model, std::vector<Real>& radius) {
 }  // namespace
 
 void compute_contact_forces(const Model& model, const State& state,
-                            const std::vector<ContactPatch>& patches, ContactForces& f,
+                            const std::vector<ContactPatch>& patches, Real dt, ContactForces& f,
                             const ExternalLoads* loads, SolverSync* sync) {
   const SceneDef& scene = model.scene;
-  const Real dt = scene.time_step;
   const size_t n_bodies = model.bodies.size();
   f.force.assign(n_bodies, Vec3::Zero());
   f.torque.assign(n_bodies, Vec3::Zero());

@@ -59,8 +59,9 @@ struct ContactForces {
 // contact impulses must answer as they answer gravity.
 // With `sync` (a run shared among MPI ranks, solver_sync.hpp) the patches are this rank's and
 // the solve is the ranks' together: every rank calls it, with patches or without.
+// `dt`: the time the forces act over, the scene's time step or, with sub-steps, one sub-step.
 void compute_contact_forces(const Model& model, const State& state,
-                            const std::vector<ContactPatch>& patches, ContactForces& out,
+                            const std::vector<ContactPatch>& patches, Real dt, ContactForces& out,
                             const ExternalLoads* loads = nullptr, SolverSync* sync = nullptr);
 
 }  // namespace tem

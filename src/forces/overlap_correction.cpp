@@ -12,11 +12,10 @@ constexpr Real kSlop = 1e-4;  // of the body's size: overlap left alone
 
 }  // namespace
 
-CorrectionReport correct_overlap(const Model& model, ContactForces& f, Real energy_before,
-                                 State& state, SolverSync* sync) {
+CorrectionReport correct_overlap(const Model& model, ContactForces& f, Real dt,
+                                 Real energy_before, State& state, SolverSync* sync) {
   CorrectionReport report;
   if (f.points.empty() && !sync) return report;
-  const Real dt = model.scene.time_step;
   std::vector<Real>& targets = f.correction.targets;
   targets.assign(f.points.size(), 0);
   bool any = false;

@@ -24,7 +24,8 @@ struct CorrectionReport {
 // the step's contact forces (points, responses, centres, patches).
 // With `sync` (MPI ranks, solver_sync.hpp) every rank calls it: the energies and the move's
 // cost are the ranks' sums, the solve is shared, and each rank moves the bodies it owns.
-CorrectionReport correct_overlap(const Model& model, ContactForces& forces,
+// `dt`: the step (or sub-step) the forces were found for.
+CorrectionReport correct_overlap(const Model& model, ContactForces& forces, Real dt,
                                  Real energy_before, State& state, SolverSync* sync = nullptr);
 
 }  // namespace tem

@@ -22,6 +22,7 @@
 #include <string_view>
 #include <utility>
 
+#include "contact/contact_margins.hpp"
 #include "io/json_reader.hpp"
 #include "io/process_reader.hpp"
 
@@ -96,7 +97,8 @@ const KeyList kContactKeys = {"model",     "friction",   "restitution",
                               "stiffness", "damping",    "normals",
                               "points",    "law",        "tangential_stiffness",
                               "tolerance", "max_sweeps", "sweep_order",
-                              "margin",    "solver",     "pairs"};
+                              "margin",    "solver",     "pairs",
+                              "substeps"};
 const KeyList kContainerKeys = {"min", "max", "material"};
 const KeyList kRegionKeys = {"min", "max"};
 const KeyList kWallKeys = {"point", "normal", "material", "removed_at"};
@@ -168,6 +170,13 @@ class SceneReader {
     if (const Json* j = Reader::get(root, "materials"))
       p_.read_materials(*j, "materials", &scene->materials);
     if (const Json* j = Reader::get(root, "contact")) read_contact(*j, "contact", &scene->contact);
+    // Sub-steps carry the points of contact before overlap through the step (refreshed_patches.hpp);
+    // the other modes have no points to carry.
+    if (scene->contact.substeps > 1 && !contact_before_overlap(*scene))
+      r_.fail("contact.substeps",
+              "must be 1 unless contact is made before overlap (model \"semm\" with face "
+              "normals, corner points, the default integrator and a margin other than 0), got " +
+                  std::to_string(scene->contact.substeps));
     if (const Json* j = Reader::get(root, "container")) {
       ContainerDef container;
       if (read_container(*j, "container", &container)) scene->container = container;
@@ -273,6 +282,7 @@ class SceneReader {
     }
     r_.read_number(j, path, "tolerance", &contact->tolerance, Bound::positive);
     r_.read_int(j, path, "max_sweeps", &contact->max_sweeps, 1, 1'000'000);
+    r_.read_int(j, path, "substeps", &contact->substeps, 1, 1'000);
     if (const Json* o = Reader::get(j, "sweep_order")) {
       if (auto coloured = r_.choice<bool>(*o, child(path, "sweep_order"),
                                           {{"patches", false}, {"colours", true}})) {

@@ -328,6 +328,7 @@ Json scene_to_json(const SceneDef& scene) {
                       {"points", scene.contact.points == PatchPoints::one ? "one" : "corners"},
                       {"tolerance", scene.contact.tolerance},
                       {"max_sweeps", scene.contact.max_sweeps},
+                      {"substeps", scene.contact.substeps},
                       {"sweep_order", scene.contact.colour_sweeps ? "colours" : "patches"},
                       {"solver", scene.contact.solver == ContactSolver::blocks ? "blocks" : "rows"}};
   if (scene.contact.margin)

@@ -33,7 +33,8 @@ DrivenPose motion_pose(const Body& body, Real t) {
 }
 
 void move_driven_bodies(const Model& model, State& state) {
-  const Real t = state.time, dt = model.scene.time_step;
+  // The velocities of the coming sub-step (with one sub-step, of the step).
+  const Real t = state.time, dt = substep_time(model.scene);
   for (size_t b = 0; b < model.bodies.size(); ++b) {
     const Body& body = model.bodies[b];
     if (!body.motion || body.fixed) continue;

@@ -27,7 +27,8 @@ struct DrivenPose {
 DrivenPose motion_pose(const Body& body, Real t);
 
 // Puts every body with a motion at its pose at state.time and gives it the velocities of the
-// step that starts there (the centre's mean velocity and the mean angular velocity).
+// step (or sub-step, contact.substeps) that starts there (the centre's mean velocity and the
+// mean angular velocity).
 void move_driven_bodies(const Model& model, State& state);
 
 // Whether the scene has bodies with a prescribed motion.

@@ -5,6 +5,7 @@
 
 #include "dynamics/integrator.hpp"
 #include "contact/contact_margins.hpp"
+#include "contact/refreshed_patches.hpp"
 #include "forces/overlap_correction.hpp"
 #include "process/motion.hpp"
 #include "process/sensors.hpp"
@@ -25,9 +26,9 @@ double seconds_since(Clock::time_point& start) {
 // The work of the external loads over a step from `before` to `after`: F.(x1 - x0) and
 // N.(dt omega1) (the default integrator's drift turns a body by its spin after the kick).
 Real external_work(const Model& model, const ExternalLoads& loads,
-                   const std::vector<BodyState>& before, const std::vector<BodyState>& after) {
+                   const std::vector<BodyState>& before, const std::vector<BodyState>& after,
+                   Real dt) {
   Real work = 0;
-  const Real dt = model.scene.time_step;
   for (size_t b = 0; b < model.bodies.size(); ++b) {
     if (model.bodies[b].driven()) continue;
     work += loads.force[b].dot(after[b].x - before[b].x);
@@ -38,19 +39,71 @@ Real external_work(const Model& model, const ExternalLoads& loads,
 
 // The work the bodies with a prescribed motion do on the others over the step through
 // contact: minus the contact force and torque on each, times its velocities of the step.
-Real driven_work(const Model& model, const State& state, const ContactForces& forces) {
+Real driven_work(const Model& model, const State& state, const ContactForces& forces, Real dt) {
   Real work = 0;
   for (size_t b = 0; b < model.bodies.size(); ++b) {
     if (!model.bodies[b].motion || model.bodies[b].fixed) continue;
     const BodyState& s = state.bodies[b];
     work -= forces.force[b].dot(s.v) + forces.torque[b].dot(s.angular_velocity_world());
   }
-  work *= model.scene.time_step;
+  work *= dt;
   // Sliding surfaces (conveyor belts): the friction impulse j on B (-j on A) against the
   // surfaces' relative slide does -j.(s_B - s_A) on the others.
   for (const PatchFriction& p : forces.friction)
     work -= p.t1 * p.surface_slip.x() + p.t2 * p.surface_slip.y();
   return work;
+}
+
+// One sub-step (the whole step without contact.substeps) of length h from `state`, with the
+// forces of the last solve in w.forces: stages 5 (integration), 6 (overlap correction), the
+// clock and the driven bodies, 7 (sensors). Returns whether the correction moved bodies.
+bool integrate_substep(const Model& model, State& state, Workspace& w, Real h, bool last,
+                       Real step_start_time, int substep) {
+  const SceneDef& scene = model.scene;
+  // 5. Integration of every moving body under gravity and its contact force and torque.
+  bool correct = scene.contact.model == ContactModel::semm &&
+                 scene.integrator == IntegratorKind::default_ && !w.patches.empty();
+  if (w.sync) correct = w.sync->sum(correct ? 1 : 0) > 0;  // all ranks, or none
+  Real energy_before = correct ? system_energies(model, state, w.sync).total() : 0;
+  const bool loaded = !w.loads.empty();
+  const bool sensing = !scene.sensors.empty();
+  if (!w.contact.reach.empty() || loaded || sensing) w.before = state.bodies;
+  // Prescribed motion (process/motion.hpp): its work on the others is no dissipation either.
+  const Real pushed = model.any_motion && !w.forces.force.empty()
+                          ? driven_work(model, state, w.forces, h)
+                          : 0;
+  state.driven_work += pushed;
+  energy_before += pushed;
+  const bool all = w.subset.empty();
+  parallel_for(static_cast<long long>(model.bodies.size()), 256, [&](long long i) {
+    if (model.bodies[i].driven() || (!all && !w.subset.owned[i])) return;
+    const Vec3 force = loaded ? Vec3(w.forces.force[i] + w.loads.force[i]) : w.forces.force[i];
+    const Vec3 torque = loaded ? Vec3(w.forces.torque[i] + w.loads.torque[i]) : w.forces.torque[i];
+    integrate(scene.integrator, model.bodies[i].inertia, scene.gravity, force, torque, h,
+              state.bodies[i]);
+  });
+  // 6. Correction of existing overlap, within the energy the contacts dissipated (default).
+  // The external loads' work over the step is no dissipation of the contacts': a drag's loss
+  // must not fund a correction, nor a push's gain hide one.
+  if (correct && loaded) energy_before += external_work(model, w.loads, w.before, state.bodies, h);
+  const bool corrected =
+      correct && correct_overlap(model, w.forces, h, energy_before, state, w.sync).applied;
+  if (last) {
+    ++state.step;
+    // No drift from summing dt; and where dt divides a second (1e-5, 1/240), step / steps per
+    // second, the double nearest the decimal time (15000 * 1e-5 is 0.15000000000000002).
+    const Real per_second = std::round(1 / scene.time_step);
+    state.time = std::abs(per_second * scene.time_step - 1) < 1e-12
+                     ? static_cast<Real>(state.step) / per_second
+                     : static_cast<Real>(state.step) * scene.time_step;
+  } else {
+    state.time = step_start_time + (substep + 1) * h;
+  }
+  // Bodies with a prescribed motion go where it puts them at the new time.
+  if (model.any_motion) move_driven_bodies(model, state);
+  // 7. Sensors: plane crossings and the contact forces on the bodies they watch.
+  if (sensing) accumulate_sensors(model, w.before, state, w.forces);
+  return corrected;
 }
 
 }  // namespace
@@ -75,66 +128,55 @@ void find_contact_forces(const Model& model, const State& state, Workspace& w) {
   find_patches(model, patch_variant(scene), w.contact, w.patches);
   w.times.narrow_phase += seconds_since(clock);
 
-  // 4. Forces: the contact impulses of the scene's force model, as forces held over the step.
-  compute_contact_forces(model, state, w.patches, w.forces, loads, w.sync);
+  // 4. Forces: the contact impulses of the scene's force model, as forces held over the step
+  // (with sub-steps, over its first sub-step).
+  compute_contact_forces(model, state, w.patches, substep_time(scene), w.forces, loads, w.sync);
   w.times.forces += seconds_since(clock);
 }
 
 void advance(const Model& model, State& state, Workspace& w) {
   const SceneDef& scene = model.scene;
   Clock::time_point clock = Clock::now();
-
-  // 5. Integration of every moving body under gravity and its contact force and torque.
-  bool correct = scene.contact.model == ContactModel::semm &&
-                 scene.integrator == IntegratorKind::default_ && !w.patches.empty();
-  if (w.sync) correct = w.sync->sum(correct ? 1 : 0) > 0;  // all ranks, or none
-  Real energy_before = correct ? system_energies(model, state, w.sync).total() : 0;
-  const bool loaded = !w.loads.empty();
-  const bool sensing = !scene.sensors.empty();
-  if (!w.contact.reach.empty() || loaded || sensing) w.before = state.bodies;
-  // Prescribed motion (process/motion.hpp): its work on the others is no dissipation either.
-  const Real pushed = model.any_motion && !w.forces.force.empty()
-                          ? driven_work(model, state, w.forces)
-                          : 0;
-  state.driven_work += pushed;
-  energy_before += pushed;
-  const bool all = w.subset.empty();
-  parallel_for(static_cast<long long>(model.bodies.size()), 256, [&](long long i) {
-    if (model.bodies[i].driven() || (!all && !w.subset.owned[i])) return;
-    const Vec3 force = loaded ? Vec3(w.forces.force[i] + w.loads.force[i]) : w.forces.force[i];
-    const Vec3 torque = loaded ? Vec3(w.forces.torque[i] + w.loads.torque[i]) : w.forces.torque[i];
-    integrate(scene.integrator, model.bodies[i].inertia, scene.gravity, force, torque,
-              scene.time_step, state.bodies[i]);
-  });
-  // 6. Correction of existing overlap, within the energy the contacts dissipated (default).
-  // The external loads' work over the step is no dissipation of the contacts': a drag's loss
-  // must not fund a correction, nor a push's gain hide one.
-  if (correct && loaded) energy_before += external_work(model, w.loads, w.before, state.bodies);
-  if (correct && correct_overlap(model, w.forces, energy_before, state, w.sync).applied)
-    ++w.times.corrected_steps;
+  const int substeps = scene.contact.substeps;
+  const Real h = substep_time(scene);
+  const Real step_start_time = state.time;
+  // Sub-steps (refreshed_patches.hpp): the bodies where the step's detection saw them (for the
+  // reach check); the first sub-step's forces are already found.
+  if (substeps > 1) w.detected = state.bodies;
+  const ExternalLoads* loads = w.loads.empty() ? nullptr : &w.loads;
+  bool corrected = false, unconverged = false, scaled = false;
+  int sweeps = 0;
+  for (int s = 0; s < substeps; ++s) {
+    if (s > 0) {
+      w.times.integrate += seconds_since(clock);
+      // 3'. The detected pairs' patches again at the sub-step's poses, from their features.
+      refresh_patches(model, state, w.contact, w.patches, w.refreshed, w.moved_patches);
+      w.times.narrow_phase += seconds_since(clock);
+      // 4'. The sub-step's forces.
+      compute_contact_forces(model, state, w.moved_patches, h, w.forces, loads, w.sync);
+      w.times.forces += seconds_since(clock);
+    }
+    sweeps += w.forces.solver.sweeps;
+    unconverged = unconverged || !w.forces.solver.converged;
+    scaled = scaled || w.forces.solver.scale < 1;
+    corrected = integrate_substep(model, state, w, h, s + 1 == substeps, step_start_time, s) ||
+                corrected;
+  }
+  if (corrected) ++w.times.corrected_steps;
   // Bodies that moved farther than their reach could meet a contact already overlapping.
   if (!w.contact.reach.empty())
-    w.times.outran_margin += bodies_outrunning_reach(model, w.contact.reach, w.before, state.bodies);
-  ++state.step;
-  // No drift from summing dt; and where dt divides a second (1e-5, 1/240), step / steps per
-  // second, the double nearest the decimal time (15000 * 1e-5 is 0.15000000000000002).
-  const Real per_second = std::round(1 / scene.time_step);
-  state.time = std::abs(per_second * scene.time_step - 1) < 1e-12
-                   ? static_cast<Real>(state.step) / per_second
-                   : static_cast<Real>(state.step) * scene.time_step;
-  // Bodies with a prescribed motion go where it puts them at the new time.
-  if (model.any_motion) move_driven_bodies(model, state);
-  // 7. Sensors: plane crossings and the contact forces on the bodies they watch.
-  if (sensing) accumulate_sensors(model, w.before, state, w.forces);
+    w.times.outran_margin += bodies_outrunning_reach(model, w.contact.reach,
+                                                     substeps > 1 ? w.detected : w.before,
+                                                     state.bodies);
   w.times.integrate += seconds_since(clock);
 
   ++w.times.steps;
   w.times.patches += static_cast<long long>(w.patches.size());
   w.times.points += static_cast<long long>(w.forces.points.size());
-  w.times.sweeps += w.forces.solver.sweeps;
-  w.times.max_sweeps = std::max(w.times.max_sweeps, w.forces.solver.sweeps);
-  if (!w.forces.solver.converged) ++w.times.unconverged_steps;
-  if (w.forces.solver.scale < 1) ++w.times.scaled_steps;
+  w.times.sweeps += sweeps;
+  w.times.max_sweeps = std::max(w.times.max_sweeps, sweeps);
+  if (unconverged) ++w.times.unconverged_steps;
+  if (scaled) ++w.times.scaled_steps;
 }
 
 Energies system_energies(const Model& model, const State& state) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "contact/detect_contacts.hpp"
+#include "contact/refreshed_patches.hpp"
 #include "forces/contact_forces.hpp"
 #include "forces/solver_sync.hpp"
 #include "world/model.hpp"
@@ -35,7 +36,12 @@ struct Workspace {
   std::vector<ContactPatch> patches;  // of the last step, at the state it started from
   ContactForces forces;               // of the last step
   StageTimes times;
-  std::vector<BodyState> before;  // the bodies at the step's start (reach check, external work)
+  std::vector<BodyState> before;  // the bodies at the (sub-)step's start (reach, external work)
+  // With contact.substeps > 1: the bodies at the step's detection, and the detected patches
+  // rebuilt at the current sub-step (refreshed_patches.hpp) with their scratch.
+  std::vector<BodyState> detected;
+  std::vector<ContactPatch> moved_patches;
+  RefreshScratch refreshed;
   // Forces and torques from outside (the public API's external_force / external_torque), held
   // until changed; empty: none. Sized to the bodies when set.
   ExternalLoads loads;

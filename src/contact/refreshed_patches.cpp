@@ -1,0 +1,52 @@
+#include "contact/refreshed_patches.hpp"
+
+#include "collision/block_pose.hpp"
+#include "support/parallel.hpp"
+
+namespace tem {
+
+void refresh_patches(const Model& model, const State& state, const ContactWorkspace& contact,
+                     const std::vector<ContactPatch>& detected, RefreshScratch& scratch,
+                     std::vector<ContactPatch>& out) {
+  const long long n = static_cast<long long>(detected.size());
+  scratch.threads.resize(static_cast<size_t>(max_threads()));
+  scratch.slots.resize(detected.size());
+  scratch.found.assign(detected.size(), 0);
+  const std::vector<Real>& reach = contact.reach;
+  auto placed_block = [&](int body, int instance) -> const Block& {
+    return model.blocks[model.bodies[body].blocks[instance].block];
+  };
+  parallel_for(n, 64, [&](long long k) {
+    const ContactPatch& d = detected[static_cast<size_t>(k)];
+    ManifoldScratch& s = scratch.threads[static_cast<size_t>(thread_index())];
+    const BlockInstance& instance_a = model.bodies[d.body_a].blocks[d.block_a];
+    const Block& a = placed_block(d.body_a, d.block_a);
+    place_block(a, block_pose(instance_a, state.bodies[d.body_a]), s.a);
+    Manifold m;
+    bool found;
+    if (d.wall >= 0) {
+      const Wall& wall = model.walls[d.wall];
+      found = wall_manifold(a, s.a, wall.point, wall.normal, 2 * reach[d.body_a], s, m);
+    } else {
+      const BlockInstance& instance_b = model.bodies[d.body_b].blocks[d.block_b];
+      const Block& b = placed_block(d.body_b, d.block_b);
+      place_block(b, block_pose(instance_b, state.bodies[d.body_b]), s.b);
+      found = rebuild_manifold(a, s.a, b, s.b, reach[d.body_a] + reach[d.body_b], d.manifold, s,
+                               m);
+    }
+    if (!found) return;
+    ContactPatch& p = scratch.slots[static_cast<size_t>(k)];
+    p = manifold_patch(m);
+    p.body_a = d.body_a;
+    p.body_b = d.body_b;
+    p.wall = d.wall;
+    p.block_a = d.block_a;
+    p.block_b = d.block_b;
+    scratch.found[static_cast<size_t>(k)] = 1;
+  });
+  out.clear();
+  for (size_t k = 0; k < detected.size(); ++k)
+    if (scratch.found[k]) out.push_back(scratch.slots[k]);
+}
+
+}  // namespace tem
