@@ -46,6 +46,10 @@ struct RowSolverMemory {
     Real t1 = 0, t2 = 0, twist = 0;
     Real mu = 0;       // the patch's friction coefficient
     int rolling = -1;  // its rolling row in `rolling`, or -1: none
+    // The patch's normal rows solved together (semm_rows.cpp, patch_block): the pseudo-inverse
+    // of their K, for a patch of three or four points not on one line; `block` false: none.
+    Eigen::Matrix<Real, 4, 4> k_pseudo_inverse = Eigen::Matrix<Real, 4, 4>::Zero();
+    bool block = false;
   };
   // Rolling resistance of a patch with mu_r > 0: a bounded 2-D angular row, an angular impulse
   // about the patch's tangents (on B, the opposite on A) inside the disc mu_r R (sum of the
