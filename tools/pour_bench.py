@@ -28,7 +28,7 @@ which would pass rule 4 for free) unless --peer-sleep.
       [--threads N] [--set KEY=VALUE ...] [--tem-json JSON] [--ode-args ARGS]
       [--bullet-args ARGS] [--peer-sleep] [--timeout S] [--keep DIR]
 
---set and --tem-json change TEM's copy of the scene only (e.g. --set contact.substeps=4, or
+--set and --tem-json (or --tem-args) change TEM's copy of the scene only (e.g. --set contact.substeps=4, or
 --tem-json '{"contact": {"max_sweeps": 40}}'); VALUE is read as JSON when it parses, else as
 text. Standard library only.
 """
@@ -292,7 +292,8 @@ def main():
     ap.add_argument("--threads", type=int, default=1, help="tem run --threads (default 1)")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="a change to TEM's scene, e.g. contact.substeps=4 (repeatable)")
-    ap.add_argument("--tem-json", action="append", default=[], metavar="JSON",
+    ap.add_argument("--tem-json", "--tem-args", dest="tem_json", action="append", default=[],
+                    metavar="JSON",
                     help="a JSON object merged into TEM's scene (repeatable)")
     ap.add_argument("--ode-args", default="", help="extra tem_ode options, e.g. '--iterations 40'")
     ap.add_argument("--bullet-args", default="", help="extra tem_bullet options")
