@@ -28,9 +28,9 @@ which would pass rule 4 for free) unless --peer-sleep.
       [--threads N] [--set KEY=VALUE ...] [--tem-json JSON] [--ode-args ARGS]
       [--bullet-args ARGS] [--peer-sleep] [--timeout S] [--keep DIR]
 
---set and --tem-json (or --tem-args) change TEM's copy of the scene only (e.g. --set contact.substeps=4, or
---tem-json '{"contact": {"max_sweeps": 40}}'); VALUE is read as JSON when it parses, else as
-text. Standard library only.
+--set and --tem-json (or --tem-args) change TEM's copy of the scene only (e.g. --set
+contact.substeps=4, or --tem-json '{"contact": {"max_sweeps": 40}}'); VALUE is read as JSON
+when it parses, else as text. Standard library only.
 """
 import argparse
 import csv
@@ -47,6 +47,7 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "tools"))
+sys.dont_write_bytecode = True  # no __pycache__ left in tools/
 import pile_check  # noqa: E402  (body sizes of a scene, as the pile judge reads them)
 
 ENGINES = ("tem", "ode", "bullet")
@@ -375,7 +376,8 @@ def main():
                 print("time to a right answer, %s: none of its runs was right" % engine)
         peers = [best[e][0] for e in engines if e != "tem" and e in best]
         if "tem" in best and peers:
-            print("TEM / fastest peer: %.3g (below 1: TEM is faster)" % (best["tem"][0] / min(peers)))
+            print("TEM / fastest peer: %.3g (below 1: TEM is faster)"
+                  % (best["tem"][0] / min(peers)))
         else:
             print("TEM / fastest peer: no ratio (TEM or every peer has no right run)")
         print(flush=True)
