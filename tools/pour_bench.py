@@ -214,10 +214,12 @@ def run_tem(a, scene, dt, overrides, work, size):
         f.write(err)
     if code != 0:
         return {"failed": "tem run exit %d: %s" % (code, last_line(err))}
-    m = re.search(r"tem run: (\d+) steps to t = \S+ s in ([0-9.]+) s", err)
+    # us/step times steps: the summary's seconds have three decimals only.
+    m = re.search(r"tem run: (\d+) steps to t = .*\(\S+ steps/s, ([0-9.e+-]+) us/step\)", err)
     if not m:
         return {"failed": "no summary in tem's output"}
-    steps, wall = int(m.group(1)), float(m.group(2))
+    steps = int(m.group(1))
+    wall = steps * float(m.group(2)) * 1e-6
     samples, moving = tem_samples(out_dir, scene.get("container"), size, a.duration)
     if not a.keep:  # bodies.csv of 10,000 coins is about 100 MB a run
         shutil.rmtree(out_dir, ignore_errors=True)
