@@ -146,8 +146,11 @@ State BulletWorld::state() const {
   state.bodies.resize(body_count_);
   for (int i = 0; i < body_count_; ++i) {
     const btTransform& t = bodies_[i]->getWorldTransform();
-    state.bodies[i].x = from_bt(t.getOrigin());
-    state.bodies[i].g = from_bt_matrix(t.getBasis()) * principal_[i].transpose();
+    BodyState& b = state.bodies[i];
+    b.x = from_bt(t.getOrigin());
+    b.g = from_bt_matrix(t.getBasis()) * principal_[i].transpose();
+    b.v = from_bt(bodies_[i]->getLinearVelocity());
+    b.omega = b.g.transpose() * from_bt(bodies_[i]->getAngularVelocity());  // world to body axes
   }
   return state;
 }

@@ -1,11 +1,13 @@
 // A TEM Model rebuilt as a Bullet world (btDiscreteDynamicsWorld), and Bullet's state read back
-// as a TEM State, so that TEM's own measures (tem_measures.hpp) judge both engines alike.
+// as a TEM State, so that TEM's own measures (bench/peers/tem_measures.hpp) judge every engine
+// alike.
 #pragma once
 
 #include <memory>
 #include <vector>
 
 #include "dynamics/body_state.hpp"
+#include "peer_world.hpp"
 #include "world/model.hpp"
 
 class btDefaultCollisionConfiguration;
@@ -28,22 +30,22 @@ struct BulletSettings {
   bool sleeping = true;
 };
 
-class BulletWorld {
+class BulletWorld : public peers::PeerWorld {
  public:
   // Every Model body becomes a btRigidBody (static when fixed), every Model wall a static plane;
   // poses and velocities come from `initial`.
   BulletWorld(const Model& model, const State& initial, const BulletSettings& settings);
-  ~BulletWorld();
+  ~BulletWorld() override;
   BulletWorld(const BulletWorld&) = delete;
   BulletWorld& operator=(const BulletWorld&) = delete;
 
   // One step of exactly dt: no substeps, no interpolation.
-  void step(Real dt);
+  void step(Real dt) override;
 
-  // Centres of mass and attitudes (body frame of the Model to world); velocities are left zero.
-  State state() const;
+  // Centres of mass, attitudes (body frame of the Model to world) and velocities.
+  State state() const override;
 
-  int sleeping_bodies() const;
+  int sleeping_bodies() const override;
 
  private:
   std::unique_ptr<btDefaultCollisionConfiguration> config_;

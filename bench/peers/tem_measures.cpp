@@ -4,7 +4,7 @@
 #include <limits>
 #include <vector>
 
-namespace tem::bullet {
+namespace tem::peers {
 
 Overlap measure_overlap(const Model& model, const State& state, ContactWorkspace& workspace) {
   std::vector<ContactPatch> patches;
@@ -34,4 +34,4 @@ Real smallest_body_size(const Model& model) {
   return size;
 }
 
-}  // namespace tem::bullet
+}  // namespace tem::peers
