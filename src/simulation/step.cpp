@@ -69,6 +69,7 @@ void find_contact_forces(const Model& model, const State& state, Workspace& w) {
   const ExternalLoads* loads = w.loads.empty() ? nullptr : &w.loads;
   contact_reaches(model, state, w.contact.reach, loads, &w.subset);
   w.contact.broad_phase.update(model, state, w.contact.reach, &w.subset);
+  if (scene.sleep) leave_sleepers_out(model, state, w.loads, w.sleep, w.contact.broad_phase);
   w.times.broad_phase += seconds_since(clock);
 
   // 2-3. Narrow phase and patches: node in element, edge through face, grouping.
@@ -100,7 +101,7 @@ void advance(const Model& model, State& state, Workspace& w) {
   energy_before += pushed;
   const bool all = w.subset.empty();
   parallel_for(static_cast<long long>(model.bodies.size()), 256, [&](long long i) {
-    if (model.bodies[i].driven() || (!all && !w.subset.owned[i])) return;
+    if (model.bodies[i].driven() || (!all && !w.subset.owned[i]) || w.sleep.is_frozen(i)) return;
     const Vec3 force = loaded ? Vec3(w.forces.force[i] + w.loads.force[i]) : w.forces.force[i];
     const Vec3 torque = loaded ? Vec3(w.forces.torque[i] + w.loads.torque[i]) : w.forces.torque[i];
     integrate(scene.integrator, model.bodies[i].inertia, scene.gravity, force, torque,
@@ -115,6 +116,7 @@ void advance(const Model& model, State& state, Workspace& w) {
   // Bodies that moved farther than their reach could meet a contact already overlapping.
   if (!w.contact.reach.empty())
     w.times.outran_margin += bodies_outrunning_reach(model, w.contact.reach, w.before, state.bodies);
+  const Real time_before = state.time;
   ++state.step;
   // No drift from summing dt; and where dt divides a second (1e-5, 1/240), step / steps per
   // second, the double nearest the decimal time (15000 * 1e-5 is 0.15000000000000002).
@@ -124,6 +126,8 @@ void advance(const Model& model, State& state, Workspace& w) {
                    : static_cast<Real>(state.step) * scene.time_step;
   // Bodies with a prescribed motion go where it puts them at the new time.
   if (model.any_motion) move_driven_bodies(model, state);
+  // Rest timers and islands falling asleep, with the velocities the step left (sleep.hpp).
+  if (scene.sleep) update_sleep(model, w.patches, w.loads, time_before, w.sleep, state);
   // 7. Sensors: plane crossings and the contact forces on the bodies they watch.
   if (sensing) accumulate_sensors(model, w.before, state, w.forces);
   w.times.integrate += seconds_since(clock);

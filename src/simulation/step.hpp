@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "contact/detect_contacts.hpp"
+#include "dynamics/sleep.hpp"
 #include "forces/contact_forces.hpp"
 #include "forces/solver_sync.hpp"
 #include "world/model.hpp"
@@ -45,6 +46,8 @@ struct Workspace {
   BodySubset subset;
   // With a subset whose contacts are solved together by all ranks (SEMM): how they agree.
   SolverSync* sync = nullptr;
+  // With the scene's `sleep`: who is left out this step (dynamics/sleep.hpp).
+  SleepWorkspace sleep;
 };
 
 // Stages 1-4 at `state`: the patches and the contact forces of the step that starts there.
