@@ -260,6 +260,56 @@ TEST(Sleep, CheckpointKeepsTimersFlagsAndIslands) {
   std::filesystem::remove(file);
 }
 
+// Steps a Simulation (the population stage included) for `seconds`.
+void run_for(Simulation& sim, Real seconds) { sim.step(std::llround(seconds / kDt)); }
+
+// A box asleep on a gate, under which a floor lies 1 cm lower: the gate taken away at 0.2 s
+// (`wall`: a wall with removed_at; otherwise a fixed body with removed_at) must wake it, and
+// it falls to the floor (its centre from 0.05 to -0.95) instead of hanging in the air.
+void expect_falls_when_gate_goes(bool wall) {
+  SceneDef scene = stack({0.0}, true);
+  scene.walls.clear();
+  scene.walls.push_back({Vec3(0, 0, -1), Vec3::UnitZ()});
+  if (wall) {
+    scene.walls.push_back({Vec3::Zero(), Vec3::UnitZ()});
+    scene.walls.back().removed_at = 0.2;
+  } else {
+    BodyDef gate = box_at("gate", -0.1);
+    gate.shape.size = Vec3(0.6, 0.6, 0.1);
+    gate.fixed = true;
+    gate.removed_at = 0.2;
+    scene.bodies.push_back(gate);
+  }
+  scene.duration = 1;
+  Simulation sim = Simulation::from_scene(scene);
+  run_for(sim, 0.15);
+  ASSERT_TRUE(sim.impl().state.bodies[0].asleep);
+  const Real z_asleep = sim.impl().state.bodies[0].x.z();
+  EXPECT_NEAR(z_asleep, 0.05, 1e-3);
+  run_for(sim, 0.3);
+  EXPECT_NEAR(sim.impl().state.bodies[0].x.z(), -0.95, 1e-3);
+}
+
+TEST(Sleep, WallTakenAwayWakesWhatRestedOnIt) { expect_falls_when_gate_goes(true); }
+TEST(Sleep, BodyTakenAwayWakesWhatRestedOnIt) { expect_falls_when_gate_goes(false); }
+
+// An external force on a sleeping box wakes it: pushed sideways with 2.5 times what friction
+// holds (friction 0.3 of its weight), it slides.
+TEST(Sleep, ExternalForceWakesASleepingBody) {
+  SceneDef scene = stack({0.0}, true);
+  scene.duration = 1;
+  Simulation sim = Simulation::from_scene(scene);
+  run_for(sim, 0.1);
+  ASSERT_TRUE(sim.impl().state.bodies[0].asleep);
+  const Vec3 at = sim.impl().state.bodies[0].x;
+  const Real weight = 0.2 * 0.2 * 0.1 * 1.0 * earth_gravity_cgs;
+  sim.set_external_force(0, Vec3(2.5 * 0.3 * weight, 0, 0));
+  run_for(sim, 0.05);
+  EXPECT_FALSE(sim.impl().state.bodies[0].asleep);
+  // (2.5 - 1) * 0.3 g: 441 cm/s^2 for 0.05 s gives 0.55 cm.
+  EXPECT_GT(sim.impl().state.bodies[0].x.x() - at.x(), 0.3);
+}
+
 // Every key checked, each problem naming its path.
 std::string problems_of(const std::string& sleep) {
   const std::string text =
