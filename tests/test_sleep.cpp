@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "api/simulation_impl.hpp"
 #include "dynamics/sleep.hpp"
 #include "io/checkpoint.hpp"
 #include "io/scene_reader.hpp"
@@ -15,7 +16,6 @@
 #include "support/parallel.hpp"
 #include "support/simulate.hpp"
 #include "support/tem_process.hpp"
-#include "api/simulation_impl.hpp"
 #include "world/state_hash.hpp"
 
 namespace tem {
@@ -107,7 +107,8 @@ TEST(Sleep, StackOfThreeSleepsOnlyAsAWhole) {
     // Before the third box arrives, the bottom two form their own island and may sleep; once
     // it touches them it wakes them: so look only at the steps where the third lies on them
     // (its centre within 2e-3 of its resting height 0.25).
-    if (b[0].rest_time >= kRest && b[2].rest_time < kRest && !b[2].asleep && b[2].x.z() < 0.25 + 2e-3)
+    if (b[0].rest_time >= kRest && b[2].rest_time < kRest && !b[2].asleep &&
+        b[2].x.z() < 0.25 + 2e-3)
       bottom_rested_alone = true;
     if (b[2].x.z() < 0.25 + 2e-3) {  // the third lies on the others: one island
       EXPECT_EQ(b[0].asleep, b[2].asleep) << "at step " << state.step;
@@ -120,11 +121,12 @@ TEST(Sleep, StackOfThreeSleepsOnlyAsAWhole) {
   const auto& b = state.bodies;
   EXPECT_EQ(b[0].island, b[1].island);
   EXPECT_EQ(b[1].island, b[2].island);
-  EXPECT_EQ(b[0].island, 0);  // named by its lowest body id
+  EXPECT_EQ(b[0].island, 0);            // named by its lowest body id
   EXPECT_NEAR(b[2].x.z(), 0.25, 2e-3);  // on top of the other two
 }
 
-// Final poses of a box dropped from 5 cm (0.1 s of fall) onto another that rests on the floor, with or without sleep.
+// Final poses of a box dropped from 5 cm (0.1 s of fall) onto another that rests on the floor, with
+// or without sleep.
 struct Drop {
   std::vector<BodyState> bodies;
   bool lower_slept = false, lower_woke = false;
@@ -316,7 +318,8 @@ std::string problems_of(const std::string& sleep) {
       R"({"walls": [{"point": [0,0,0], "normal": [0,0,1]}],
           "bodies": [{"name": "b", "shape": {"type": "box", "size": [1,1,1]},
                       "position": [0,0,0.5]}],
-          "sleep": )" + sleep + "}";
+          "sleep": )" +
+      sleep + "}";
   const SceneReadResult read = read_scene_text(text, "s.json");
   std::string all;
   for (const auto& p : read.problems) all += p.path + ": " + p.message + "\n";
@@ -331,8 +334,9 @@ TEST(Sleep, SceneKeysAreChecked) {
             std::string::npos);
   EXPECT_NE(problems_of(R"({"speed": -1, "time": 0.2})").find("sleep.speed"), std::string::npos);
   EXPECT_NE(problems_of(R"({"speed": 0.05, "time": 0})").find("sleep.time"), std::string::npos);
-  EXPECT_NE(problems_of(R"({"speed": 0.05, "time": 0.2, "tme": 1})").find("sleep: unknown key 'tme'"),
-            std::string::npos);
+  EXPECT_NE(
+      problems_of(R"({"speed": 0.05, "time": 0.2, "tme": 1})").find("sleep: unknown key 'tme'"),
+      std::string::npos);
   EXPECT_NE(problems_of(R"(true)").find("sleep"), std::string::npos);
   // Written back as read; absent, not written at all.
   const SceneReadResult read = read_scene_text(

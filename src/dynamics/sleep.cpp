@@ -46,6 +46,23 @@ bool loaded(const ExternalLoads& loads, size_t b) {
 
 }  // namespace
 
+bool everything_sleeps(const Model& model, const State& state, const ExternalLoads& loads,
+                       SleepWorkspace& sleep, std::vector<ContactPatch>& patches,
+                       ContactForces& forces) {
+  if (model.any_motion || !loads.empty()) return false;
+  const size_t n = model.bodies.size();
+  for (size_t b = 0; b < n; ++b) {
+    const BodyState& s = state.bodies[b];
+    if (model.bodies[b].fixed) continue;
+    if (!s.asleep || !s.v.isZero(0) || !s.omega.isZero(0)) return false;
+  }
+  sleep.frozen.assign(n, 0);
+  for (size_t b = 0; b < n; ++b) sleep.frozen[b] = !model.bodies[b].fixed;
+  patches.clear();
+  compute_contact_forces(model, state, patches, forces);
+  return true;
+}
+
 void leave_sleepers_out(const Model& model, const State& state, const ExternalLoads& loads,
                         SleepWorkspace& sleep, BroadPhase& broad_phase) {
   const size_t n = model.bodies.size();
@@ -77,8 +94,8 @@ void leave_sleepers_out(const Model& model, const State& state, const ExternalLo
   sleep.moving.assign(n, 0);
   for (size_t b = 0; b < n; ++b) {
     const BodyState& s = state.bodies[b];
-    sleep.frozen[b] = s.asleep && !std::binary_search(sleep.wake.begin(), sleep.wake.end(),
-                                                      s.island);
+    sleep.frozen[b] =
+        s.asleep && !std::binary_search(sleep.wake.begin(), sleep.wake.end(), s.island);
     sleep.moving[b] = !sleep.frozen[b] && !model.bodies[b].fixed;
   }
   broad_phase.drop_resting_pairs(sleep.moving);
@@ -96,6 +113,12 @@ void update_sleep(const Model& model, const std::vector<ContactPatch>& patches,
   bool gate_opened = false;
   for (const Wall& wall : model.walls)
     gate_opened = gate_opened || (time_before < wall.removed_at && wall.removed_at <= state.time);
+
+  // Everything asleep through the step (and no wall gone): nothing changes.
+  bool all_frozen = !gate_opened;
+  for (size_t b = 0; b < n && all_frozen; ++b)
+    all_frozen = sleep.frozen[b] || model.bodies[b].driven();
+  if (all_frozen) return;
 
   // The woken bodies, and the rest timers of every body that moved this step.
   for (size_t b = 0; b < n; ++b) {
@@ -127,8 +150,10 @@ void update_sleep(const Model& model, const std::vector<ContactPatch>& patches,
   }
   // Per root: the shortest rest and the lowest id of its island.
   constexpr Real kNever = -1;
-  std::vector<Real> least_rest(n, std::numeric_limits<Real>::infinity());
-  std::vector<long long> name(n, std::numeric_limits<long long>::max());
+  std::vector<Real>& least_rest = sleep.least_rest;
+  std::vector<long long>& name = sleep.name;
+  least_rest.assign(n, std::numeric_limits<Real>::infinity());
+  name.assign(n, std::numeric_limits<long long>::max());
   for (size_t b = 0; b < n; ++b) {
     const int r = find_root(parent, static_cast<int>(b));
     if (model.bodies[b].driven() || state.bodies[b].asleep) {
@@ -136,8 +161,8 @@ void update_sleep(const Model& model, const std::vector<ContactPatch>& patches,
       continue;
     }
     least_rest[r] = std::min(least_rest[r], state.bodies[b].rest_time);
-    name[r] = std::min(name[r], state.tags.size() == n ? state.tags[b].id
-                                                       : static_cast<long long>(b));
+    name[r] =
+        std::min(name[r], state.tags.size() == n ? state.tags[b].id : static_cast<long long>(b));
   }
   for (size_t b = 0; b < n; ++b) {
     BodyState& s = state.bodies[b];

@@ -22,6 +22,7 @@
 
 #include "collision/broad_phase.hpp"
 #include "contact/contact_patch.hpp"
+#include "forces/contact_forces.hpp"
 #include "process/population.hpp"
 #include "world/model.hpp"
 
@@ -35,11 +36,21 @@ struct SleepWorkspace {
   // Per body: its size (body_size), for the point speed; refreshed when the bodies change.
   std::vector<Real> size;
   long long size_version = -1;
-  // Scratch: island names to wake, union-find parents.
-  std::vector<long long> wake;
+  // Scratch: island names to wake; union-find parents, and per root the shortest rest and
+  // the lowest body id of its island.
+  std::vector<long long> wake, name;
   std::vector<int> parent;
+  std::vector<Real> least_rest;
   bool is_frozen(size_t body) const { return !frozen.empty() && frozen[body]; }
 };
+
+// Before the broad phase: whether every free body sleeps and nothing can wake one this step
+// (no prescribed motion, no load, no velocity given from outside). Then the step has no
+// contact to find: `patches` are cleared and `forces` made from none, as the full stages would
+// after dropping every pair, and the broad phase is skipped too. Only with the scene's `sleep`.
+bool everything_sleeps(const Model& model, const State& state, const ExternalLoads& loads,
+                       SleepWorkspace& sleep, std::vector<ContactPatch>& patches,
+                       ContactForces& forces);
 
 // After the broad phase: decides who wakes this step, fills `frozen` and `moving`, and drops
 // the pairs in which nothing moves. Only with the scene's `sleep`.

@@ -63,6 +63,8 @@ void step(const Model& model, State& state, Workspace& w) {
 void find_contact_forces(const Model& model, const State& state, Workspace& w) {
   const SceneDef& scene = model.scene;
   Clock::time_point clock = Clock::now();
+  // A scene wholly asleep has no contact to find (dynamics/sleep.hpp).
+  if (scene.sleep && everything_sleeps(model, state, w.loads, w.sleep, w.patches, w.forces)) return;
 
   // 1. Broad phase: block pairs and block-wall pairs whose world bounds overlap, grown by each
   // body's reach where contact is made before overlap.
