@@ -6,9 +6,9 @@
 
 #include <cmath>
 #include <cstring>
-#include <iterator>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "api/simulation_impl.hpp"
 #include "dynamics/sleep.hpp"
