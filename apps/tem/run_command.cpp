@@ -12,6 +12,7 @@
 #include "api/simulation_impl.hpp"
 #include "commands.hpp"
 #include "contact/initial_overlap.hpp"
+#include "dynamics/sleep.hpp"
 #include "forces/penalty.hpp"
 #include "progress.hpp"
 #include "stop_signal.hpp"
@@ -43,6 +44,9 @@ void print_summary(const Model& model, const State& state, const Workspace& w, d
                t.unconverged_steps, t.scaled_steps, t.patches / steps, t.points / steps,
                t.patches > 0 ? 1e6 * wall / static_cast<double>(t.patches) : 0.0, e.kinetic,
                e.potential, e.total());
+  if (model.scene.sleep)
+    std::fprintf(stderr, "  sleep: %lld of %zu bodies asleep at the end\n",
+                 sleeping_bodies(state), state.bodies.size());
   if (t.outran_margin > 0)
     std::fprintf(stderr,
                  "  warning: %lld times a body moved farther in one step than its contact margin "

@@ -162,6 +162,14 @@ struct ContactDef {
   std::vector<MaterialPairDef> pairs;
 };
 
+// Bodies at rest fall asleep (src/dynamics/sleep.hpp, docs/method.md "Sleep"): an island of
+// bodies in contact whose every body has moved slower than `speed` (|v| + |omega| * its size)
+// for `time` seconds stops being integrated and tested for contact until something wakes it.
+struct SleepDef {
+  Real speed = 0;  // scene units of length per second
+  Real time = 0;   // seconds
+};
+
 struct WallDef {
   // A constructor, so that {point, normal} still makes a wall without a warning about the
   // fields that came later.
@@ -206,6 +214,8 @@ struct SceneDef {
   std::vector<InletDef> inlets;
   std::vector<OutletDef> outlets;
   std::vector<SensorDef> sensors;
+  // Sleep of bodies at rest; absent (the default): every body is integrated every step.
+  std::optional<SleepDef> sleep;
 };
 
 // The time one solve and one integration cover: the time step, or its part with sub-steps.

@@ -82,6 +82,13 @@ void BroadPhase::keep_owned_pairs(const BodySubset& subset) {
                 [&](const WallPair& p) { return !subset.owned[proxies_[p.proxy].body]; });
 }
 
+void BroadPhase::drop_resting_pairs(const std::vector<char>& moving) {
+  std::erase_if(block_pairs_, [&](const BlockPair& p) {
+    return !moving[proxies_[p.a].body] && !moving[proxies_[p.b].body];
+  });
+  std::erase_if(wall_pairs_, [&](const WallPair& p) { return !moving[proxies_[p.proxy].body]; });
+}
+
 void BroadPhase::find_block_pairs(const Model& model) {
   block_pairs_.clear();
   large_.clear();

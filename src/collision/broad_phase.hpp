@@ -57,6 +57,11 @@ class BroadPhase {
   void update(const Model& model, const State& state, const std::vector<Real>& reach = {},
               const BodySubset* subset = nullptr);
 
+  // Drops the pairs in which no body moves this step (`moving`: one flag per body): two bodies
+  // asleep, a body asleep and a fixed one, a body asleep and a wall (dynamics/sleep.hpp). The
+  // pairs left keep their order.
+  void drop_resting_pairs(const std::vector<char>& moving);
+
   const std::vector<BlockProxy>& proxies() const { return proxies_; }
   const std::vector<BlockPose>& poses() const { return poses_; }
   const std::vector<Aabb>& bounds() const { return bounds_; }

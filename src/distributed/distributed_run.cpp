@@ -70,6 +70,10 @@ std::string unsupported_reason(const SceneDef& scene) {
   if (process)
     return "over MPI ranks TEM does not yet run granular processes (inlets, outlets, sensors, "
            "prescribed motion, removed_at): run this scene without mpirun (threads: --threads N)";
+  // An island can span ranks, and whether it sleeps would need every rank's timers.
+  if (scene.sleep)
+    return "over MPI ranks TEM does not put bodies to sleep: islands of bodies at rest can span "
+           "ranks; remove the scene's `sleep`, or run it without mpirun (threads: --threads N)";
   return "";
 }
 

@@ -16,7 +16,10 @@ constexpr char kMagic[8] = {'T', 'E', 'M', 'C', 'K', 'P', 'T', '\n'};
 // 2: the population of granular processes (body tags, inlets, sensors, driven work), the
 // sizes of removed.csv and sensors.csv, and the rolling impulses of PatchFriction (roll1,
 // roll2).
-constexpr std::uint32_t kVersion = 2;
+// 3: the sleep of bodies at rest (each body's rest_time, asleep, island), after the contact
+// memory. Version 2 is still read: its bodies are awake, their rest timers at zero.
+constexpr std::uint32_t kVersion = 3;
+constexpr std::uint32_t kOldestVersion = 2;
 
 std::uint64_t fnv1a(const char* data, std::size_t size) {
   std::uint64_t h = 14695981039346656037ull;
@@ -183,6 +186,12 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   write_records(w, c.impulses);
   write_records(w, c.friction);
   write_records(w, c.springs);
+  w.value(static_cast<std::uint64_t>(c.state.bodies.size()));
+  for (const BodyState& b : c.state.bodies) {
+    w.value(b.rest_time);
+    w.value(b.asleep);
+    w.value(b.island);
+  }
   w.value(fnv1a(w.bytes().data(), w.bytes().size()));
 
   const std::string temporary = path + ".tmp";
@@ -211,9 +220,10 @@ Checkpoint read_checkpoint(const std::string& path) {
   std::memcpy(&stored, bytes.data() + end, kSum);
   Reader r(bytes, end, path);
   const auto version = r.value<std::uint32_t>();
-  if (version != kVersion)
+  if (version < kOldestVersion || version > kVersion)
     throw std::runtime_error(path + ": checkpoint version " + std::to_string(version) +
-                             ", this tem reads version " + std::to_string(kVersion));
+                             ", this tem reads versions " + std::to_string(kOldestVersion) +
+                             " to " + std::to_string(kVersion));
   if (stored != fnv1a(bytes.data(), end))
     throw std::runtime_error(path + ": the checkpoint is corrupted (checksum mismatch)");
 
@@ -236,6 +246,15 @@ Checkpoint read_checkpoint(const std::string& path) {
   c.impulses = read_records<PointImpulse>(r);
   c.friction = read_records<PatchFriction>(r);
   c.springs = read_records<PenaltySpring>(r);
+  if (version >= 3) {
+    if (r.count(sizeof(Real) + sizeof(bool) + sizeof(long long)) != c.state.bodies.size())
+      throw std::runtime_error(path + ": the checkpoint's sleep records do not match its bodies");
+    for (BodyState& b : c.state.bodies) {
+      r.value(b.rest_time);
+      r.value(b.asleep);
+      r.value(b.island);
+    }
+  }
   if (!r.at_end()) throw std::runtime_error(path + ": the checkpoint has trailing bytes");
   return c;
 }

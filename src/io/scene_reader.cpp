@@ -92,7 +92,8 @@ Mat3 rotation_z_cs(Real c, Real s) {
 
 const KeyList kSceneKeys = {"gravity",   "time_step", "duration", "integrator", "contact",
                             "container", "walls",     "bodies",   "fill",       "output",
-                            "materials", "inlets",    "outlets",  "sensors"};
+                            "materials", "inlets",    "outlets",  "sensors",
+                            "sleep"};
 const KeyList kContactKeys = {"model",     "friction",   "restitution",
                               "stiffness", "damping",    "normals",
                               "points",    "law",        "tangential_stiffness",
@@ -103,6 +104,7 @@ const KeyList kContainerKeys = {"min", "max", "material"};
 const KeyList kRegionKeys = {"min", "max"};
 const KeyList kWallKeys = {"point", "normal", "material", "removed_at"};
 const KeyList kOutputKeys = {"interval", "checkpoint_interval", "paraview"};
+const KeyList kSleepKeys = {"speed", "time"};
 const KeyList kBodyKeys = {"name",          "shape",      "density",  "position",
                            "euler_zxz_deg", "quaternion", "velocity", "angular_velocity",
                            "fixed",         "material",   "motion",   "removed_at"};
@@ -194,6 +196,7 @@ class SceneReader {
     if (const Json* j = fills_bodies ? Reader::get(root, "bodies") : r_.need(root, "", "bodies"))
       read_bodies(*j, "bodies", &scene->bodies, /*may_be_empty=*/fills_bodies);
     if (const Json* j = Reader::get(root, "output")) read_output(*j, "output", &scene->output);
+    if (const Json* j = Reader::get(root, "sleep")) read_sleep(*j, "sleep", scene);
     if (const Json* j = Reader::get(root, "outlets"))
       p_.read_outlets(*j, "outlets", &scene->outlets);
     if (const Json* j = Reader::get(root, "sensors"))
@@ -360,6 +363,17 @@ class SceneReader {
     r_.read_number(j, path, "checkpoint_interval", &output->checkpoint_interval,
                    Bound::non_negative);
     r_.read_bool(j, path, "paraview", &output->paraview);
+  }
+
+  // Both keys are required: a speed under which a body counts as at rest depends on the
+  // scene's units and scale, so no default would fit every scene.
+  void read_sleep(const Json& j, const std::string& path, SceneDef* scene) {
+    if (!r_.object(j, path)) return;
+    r_.check_keys(j, path, kSleepKeys);
+    SleepDef sleep;
+    const bool speed_ok = r_.read_number(j, path, "speed", &sleep.speed, Bound::positive, true);
+    const bool time_ok = r_.read_number(j, path, "time", &sleep.time, Bound::positive, true);
+    if (speed_ok && time_ok) scene->sleep = sleep;
   }
 
   void read_bodies(const Json& j, const std::string& path, std::vector<BodyDef>* bodies,

@@ -385,6 +385,9 @@ Json scene_to_json(const SceneDef& scene) {
   j["output"] = Json{{"interval", scene.output.interval},
                      {"checkpoint_interval", scene.output.checkpoint_interval},
                      {"paraview", scene.output.paraview}};
+  // Only when on: a scene without it keeps its text, so its checkpoints' fingerprint.
+  if (scene.sleep)
+    j["sleep"] = Json{{"speed", scene.sleep->speed}, {"time", scene.sleep->time}};
   return j;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "dynamics/sleep.hpp"
 #include "process/motion.hpp"
 #include "world/fill.hpp"
 #include "world/placement.hpp"
@@ -133,7 +134,8 @@ bool remove_leaving(Model& model, State& state, const PopulationLinks& links,
       map[b] = kept++;
       continue;
     }
-    removed.push_back({state.time, body.name, s.x, s.v, body.inertia.mass});
+    removed.push_back({state.time, body.name, s.x, s.v, body.inertia.mass,
+                       model.scene.sleep ? body_size(model, body) : 0});
     if (body.owns_blocks)
       for (const BlockInstance& i : body.blocks) model.free_blocks.push_back(i.block);
   }
@@ -234,7 +236,10 @@ void start_population(Model& model, State& state, const PopulationLinks& links,
 
 void update_population(Model& model, State& state, const PopulationLinks& links,
                        std::vector<RemovedBody>& removed) {
+  const size_t removed_before = removed.size();
   bool changed = remove_leaving(model, state, links, removed);
+  if (changed && model.scene.sleep)
+    wake_near_removed(model, removed, removed_before, state);
   changed = insert_due(model, state, links) || changed;
   if (changed) ++model.population_version;
 }

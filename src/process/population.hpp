@@ -35,6 +35,7 @@ struct RemovedBody {
   std::string name;
   Vec3 x = Vec3::Zero(), v = Vec3::Zero();
   Real mass = 0;
+  Real size = 0;  // body_size, with the scene's `sleep` only: who rested on it wakes
 };
 
 // What the population stage changes besides the Model and the State: the contact memory and

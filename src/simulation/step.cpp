@@ -76,7 +76,7 @@ bool integrate_substep(const Model& model, State& state, Workspace& w, Real h, b
   energy_before += pushed;
   const bool all = w.subset.empty();
   parallel_for(static_cast<long long>(model.bodies.size()), 256, [&](long long i) {
-    if (model.bodies[i].driven() || (!all && !w.subset.owned[i])) return;
+    if (model.bodies[i].driven() || (!all && !w.subset.owned[i]) || w.sleep.is_frozen(i)) return;
     const Vec3 force = loaded ? Vec3(w.forces.force[i] + w.loads.force[i]) : w.forces.force[i];
     const Vec3 torque = loaded ? Vec3(w.forces.torque[i] + w.loads.torque[i]) : w.forces.torque[i];
     integrate(scene.integrator, model.bodies[i].inertia, scene.gravity, force, torque, h,
@@ -116,12 +116,15 @@ void step(const Model& model, State& state, Workspace& w) {
 void find_contact_forces(const Model& model, const State& state, Workspace& w) {
   const SceneDef& scene = model.scene;
   Clock::time_point clock = Clock::now();
+  // A scene wholly asleep has no contact to find (dynamics/sleep.hpp).
+  if (scene.sleep && everything_sleeps(model, state, w.loads, w.sleep, w.patches, w.forces)) return;
 
   // 1. Broad phase: block pairs and block-wall pairs whose world bounds overlap, grown by each
   // body's reach where contact is made before overlap.
   const ExternalLoads* loads = w.loads.empty() ? nullptr : &w.loads;
   contact_reaches(model, state, w.contact.reach, loads, &w.subset);
   w.contact.broad_phase.update(model, state, w.contact.reach, &w.subset);
+  if (scene.sleep) leave_sleepers_out(model, state, w.loads, w.sleep, w.contact.broad_phase);
   w.times.broad_phase += seconds_since(clock);
 
   // 2-3. Narrow phase and patches: node in element, edge through face, grouping.
@@ -168,6 +171,8 @@ void advance(const Model& model, State& state, Workspace& w) {
     w.times.outran_margin += bodies_outrunning_reach(model, w.contact.reach,
                                                      substeps > 1 ? w.detected : w.before,
                                                      state.bodies);
+  // Rest timers and islands falling asleep, with the velocities the step left (sleep.hpp).
+  if (scene.sleep) update_sleep(model, w.patches, w.loads, step_start_time, w.sleep, state);
   w.times.integrate += seconds_since(clock);
 
   ++w.times.steps;

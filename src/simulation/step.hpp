@@ -7,6 +7,7 @@
 
 #include "contact/detect_contacts.hpp"
 #include "contact/refreshed_patches.hpp"
+#include "dynamics/sleep.hpp"
 #include "forces/contact_forces.hpp"
 #include "forces/solver_sync.hpp"
 #include "world/model.hpp"
@@ -51,6 +52,8 @@ struct Workspace {
   BodySubset subset;
   // With a subset whose contacts are solved together by all ranks (SEMM): how they agree.
   SolverSync* sync = nullptr;
+  // With the scene's `sleep`: who is left out this step (dynamics/sleep.hpp).
+  SleepWorkspace sleep;
 };
 
 // Stages 1-4 at `state`: the patches and the contact forces of the step that starts there.
