@@ -59,7 +59,7 @@ bool everything_sleeps(const Model& model, const State& state, const ExternalLoa
   sleep.frozen.assign(n, 0);
   for (size_t b = 0; b < n; ++b) sleep.frozen[b] = !model.bodies[b].fixed;
   patches.clear();
-  compute_contact_forces(model, state, patches, forces);
+  compute_contact_forces(model, state, patches, substep_time(model.scene), forces);
   return true;
 }
 
