@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "contact/contact_margins.hpp"
+#include "support/falling_coin.hpp"
 #include "support/simulate.hpp"
 
 namespace tem {
@@ -14,27 +15,9 @@ namespace {
 using testing_support::report;
 using testing_support::simulate;
 
-constexpr Real kG = 981.0;
+constexpr Real kG = testing_support::kCoinGravity;
 
-// A hexagonal coin (r 0.15, h 0.1, axis z: lying flat) with its bottom `height` above the floor,
-// falling at `speed`, at time step dt.
-SceneDef falling_coin(Real height, Real speed, Real dt) {
-  SceneDef scene;
-  scene.gravity = Vec3(0, 0, -kG);
-  scene.time_step = dt;
-  scene.walls.push_back({Vec3::Zero(), Vec3::UnitZ()});
-  BodyDef coin;
-  coin.name = "coin";
-  coin.shape.type = ShapeType::prism;
-  coin.shape.sides = 6;
-  coin.shape.radius = 0.15;
-  coin.shape.height = 0.1;
-  coin.density = 7;
-  coin.position = Vec3(0, 0, 0.05 + height);
-  coin.velocity = Vec3(0, 0, -speed);
-  scene.bodies.push_back(coin);
-  return scene;
-}
+using testing_support::falling_coin;
 
 // Dropped from rest 1 cm above the floor at dt = 5e-4 (the coin falls 0.022 cm in its last
 // step, a fifth of its thickness and 14% of its size): it lands within a step of free fall's

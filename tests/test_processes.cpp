@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "support/belt_energy.hpp"
 #include "support/tem_process.hpp"
 #include "tem/simulation.hpp"
 
@@ -288,17 +289,7 @@ TEST(Processes, ApiCheckpointResumesThePopulation) {
 
 TEST(Processes, EnergyLessDrivenWorkNeverRisesOnABelt) {
   Simulation sim = Simulation::load(scene_path("belt.json"));
-  const SystemEnergies start = sim.energies();
-  Real last = start.total() - start.driven_work;
-  const Real scale = sim.mass(sim.body_index("block")) * 400;  // m v^2
-  for (int k = 0; k < 300; ++k) {
-    sim.step();
-    const SystemEnergies e = sim.energies();
-    const Real now = e.total() - e.driven_work;
-    EXPECT_LE(now, last + 1e-12 * scale) << "step " << k;
-    last = now;
-  }
-  EXPECT_GT(sim.energies().driven_work, 0);
+  testing_support::expect_energy_less_driven_work_never_rises(sim, 300);
 }
 
 // `fill` judges bodies that were there first by their blocks: it fills the inside of a cup

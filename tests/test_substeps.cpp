@@ -15,6 +15,8 @@
 #include "collision/block_manifold.hpp"
 #include "contact/contact_margins.hpp"
 #include "geometry/primitives.hpp"
+#include "support/belt_energy.hpp"
+#include "support/falling_coin.hpp"
 #include "support/simulate.hpp"
 #include "support/tem_process.hpp"
 #include "tem/simulation.hpp"
@@ -146,20 +148,8 @@ TEST(SubStepManifold, FeaturesThatNoLongerHoldAreSearchedAgain) {
 }
 
 SceneDef falling_coin(Real height, Real dt, int substeps) {
-  SceneDef scene;
-  scene.gravity = Vec3(0, 0, -981.0);
-  scene.time_step = dt;
+  SceneDef scene = testing_support::falling_coin(height, 0, dt);
   scene.contact.substeps = substeps;
-  scene.walls.push_back({Vec3::Zero(), Vec3::UnitZ()});
-  BodyDef coin;
-  coin.name = "coin";
-  coin.shape.type = ShapeType::prism;
-  coin.shape.sides = 6;
-  coin.shape.radius = 0.15;
-  coin.shape.height = 0.1;
-  coin.density = 7;
-  coin.position = Vec3(0, 0, 0.05 + height);
-  scene.bodies.push_back(coin);
   return scene;
 }
 
@@ -168,7 +158,7 @@ SceneDef falling_coin(Real height, Real dt, int substeps) {
 // floor, without overlapping it and without gaining energy. One solve per step at the same dt
 // lands it a step late: the braking rule of semm.cpp stops it a step ahead of the floor.
 TEST(SubSteps, CoinLandsWithinASubStepAtFourTimesTheStep) {
-  const Real dt = 2e-3, h = 1.0, g = 981.0;
+  const Real dt = 2e-3, h = 1.0, g = testing_support::kCoinGravity;
   const Real free_fall = std::sqrt(2 * h / g);
   auto landing = [&](int substeps, Real* deepest, Real* rise, Real* z) {
     const Model model = build_model(falling_coin(h, dt, substeps));
@@ -225,17 +215,7 @@ std::string with_substeps(const std::string& name, int n, const std::string& dur
 TEST(SubSteps, EnergyLessDrivenWorkNeverRisesOnABelt) {
   const std::string scene = with_substeps("belt.json", 4);
   Simulation sim = Simulation::load(scene);
-  const SystemEnergies start = sim.energies();
-  Real last = start.total() - start.driven_work;
-  const Real scale = sim.mass(sim.body_index("block")) * 400;  // m v^2
-  for (int k = 0; k < 300; ++k) {
-    sim.step();
-    const SystemEnergies e = sim.energies();
-    const Real now = e.total() - e.driven_work;
-    EXPECT_LE(now, last + 1e-12 * scale) << "step " << k;
-    last = now;
-  }
-  EXPECT_GT(sim.energies().driven_work, 0);
+  testing_support::expect_energy_less_driven_work_never_rises(sim, 300);
   std::filesystem::remove(scene);
 }
 
