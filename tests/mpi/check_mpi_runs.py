@@ -12,10 +12,11 @@ built with TEM_MPI). Usage: check_mpi_runs.py MODE TEM MPIEXEC SCENE WORKDIR
              process's run; at 2 and 3 ranks, where bodies shared by several ranks' contacts are
              solved together (mass splitting, velocities averaged every sweep), the same pile to
              within what the pour's chaos allows: every coin at rest, the energy never rising,
-             the coins' mean height within half a coin's thickness of one process's and the
-             pile's top within one thickness (one process's own pile moves by 3.8 mm in mean
-             height and 9.5 mm at the top when only the solver's tolerance changes, 1e-10 to
-             1e-6: the outcome of a pour is chaotic, the rearrangement of a few coins)
+             the coins' mean height within half a coin's thickness and the pile's top within one
+             thickness of a pile one process makes, at the scene's solver tolerance or at 1e-10,
+             1e-8 or 1e-6 (one process's own pile moves by 6 mm in mean height and 17 mm at the
+             top between those tolerances: the outcome of a pour is chaotic, the rearrangement
+             of a few coins)
   semm_resume a SEMM checkpoint written at 2 ranks resumes at 1 rank and on one process without
              MPI to the same bytes, and at 3 ranks to a pile at rest
   paraview   with output.paraview, 3 ranks write one tem.pvd over .pvtu frames, each over
@@ -128,20 +129,40 @@ elif MODE in ("semm", "semm_resume"):
         if rise > 1e-9 * max(abs(t) for t in totals):
             sys.exit(f"{out}: the energy rose by {rise} J between two rows")
 
-    def same_pile(reference, out, what):
-        mean0, top0, _ = final_pile(reference)
+    def same_pile(references, out, what):
+        # The piles one process makes (at the scene's tolerance and at others): the ranks' pile
+        # must be one of them, within half a thickness in mean height and a thickness at the
+        # top of at least one.
+        piles = [final_pile(r)[:2] for r in references]
         mean, top, fastest = final_pile(out)
         energy_never_rises(out)
-        print(f"{what}: mean height {mean:.5f} m (one process {mean0:.5f}), top {top:.5f} m "
-              f"({top0:.5f}), fastest coin {fastest:.2e} m/s")
+        listed = ", ".join(f"{m:.5f}/{t:.5f}" for m, t in piles)
+        print(f"{what}: mean height/top {mean:.5f}/{top:.5f} m (one process: {listed}), "
+              f"fastest coin {fastest:.2e} m/s")
         if fastest > 1e-3:
             sys.exit(f"{what}: the pile is not at rest")
-        if abs(mean - mean0) > THICKNESS / 2 or abs(top - top0) > THICKNESS:
-            sys.exit(f"{what}: not the pile one process makes")
+        if not any(abs(mean - m) <= THICKNESS / 2 and abs(top - t) <= THICKNESS
+                   for m, t in piles):
+            sys.exit(f"{what}: not a pile one process makes")
 
     serial = fresh("one_process")
     run([SCENE, "--out", serial])
     energy_never_rises(serial)
+    # The same pour on one process at other solver tolerances: what its chaos alone does to
+    # the pile (measured 2026-11-25: the top moves by 17 mm between 1e-10 and 1e-6, one coin
+    # resting a layer higher or lower; before, one tolerance's pile was the only reference and
+    # a solver change that moved that one coin failed the ranks).
+    references = [serial]
+    with open(SCENE) as f:
+        scene_text = f.read()
+    for tolerance in ("1e-10", "1e-8", "1e-6"):
+        path = os.path.join(WORK, f"tolerance_{tolerance}.json")
+        with open(path, "w") as f:
+            f.write(re.sub(r'"contact":\s*\{', f'"contact": {{"tolerance": {tolerance}, ',
+                           scene_text, count=1))
+        out = fresh(f"one_process_tolerance_{tolerance}")
+        run([path, "--out", out])
+        references.append(out)
     if MODE == "semm":
         for ranks in (1, 2, 3):
             out = fresh(f"ranks_{ranks}")
@@ -153,7 +174,7 @@ elif MODE in ("semm", "semm_resume"):
                 if not m or float(m.group(1)) <= 0 or float(m.group(2)) <= 0:
                     sys.exit(f"at {ranks} ranks no body was a ghost or crossed a boundary:\n"
                              f"{summary}")
-                same_pile(serial, out, f"{ranks} ranks")
+                same_pile(references, out, f"{ranks} ranks")
     else:
         with open(SCENE) as f:
             duration = float(re.search(r'"duration":\s*([0-9.eE+-]+)', f.read()).group(1))
@@ -169,7 +190,7 @@ elif MODE in ("semm", "semm_resume"):
             outs[resumed_at] = out
         same_files(outs[None], outs[1],
                    "checkpoint of 2 ranks resumed at 1 rank, against one process")
-        same_pile(serial, outs[3], "checkpoint of 2 ranks resumed at 3")
+        same_pile(references, outs[3], "checkpoint of 2 ranks resumed at 3")
 elif MODE == "paraview":
     import json
     import xml.etree.ElementTree as ET
