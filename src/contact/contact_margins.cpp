@@ -11,13 +11,6 @@ constexpr Real kMotionRoom = 2;        // twice a step's motion: room to brake (
 
 }  // namespace
 
-bool contact_before_overlap(const SceneDef& scene) {
-  const ContactDef& c = scene.contact;
-  return c.model == ContactModel::semm && c.normals == PatchNormals::faces &&
-         c.points == PatchPoints::corners && scene.integrator == IntegratorKind::default_ &&
-         !(c.margin && *c.margin == 0);
-}
-
 void contact_reaches(const Model& model, const State& state, std::vector<Real>& reach,
                      const ExternalLoads* loads, const BodySubset* subset) {
   const SceneDef& scene = model.scene;

@@ -24,7 +24,13 @@ namespace tem {
 // Whether the scene makes contact before overlap: default SEMM (face normals, corner points)
 // with a margin that is "auto" or positive. Paper mode and the penalty model never do: the
 // penalty force is a function of the overlap, and paper mode reproduces the paper.
-bool contact_before_overlap(const SceneDef& scene);
+// Inline: the scene reader asks it too (contact.substeps), and links without the contact code.
+inline bool contact_before_overlap(const SceneDef& scene) {
+  const ContactDef& c = scene.contact;
+  return c.model == ContactModel::semm && c.normals == PatchNormals::faces &&
+         c.points == PatchPoints::corners && scene.integrator == IntegratorKind::default_ &&
+         !(c.margin && *c.margin == 0);
+}
 
 // Per body, the reach at `state` (empty when the scene does not make contact before overlap).
 void contact_reaches(const Model& model, const State& state, std::vector<Real>& reach,
