@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include "collision/block_manifold.hpp"
 #include "geometry/primitives.hpp"
@@ -128,7 +129,8 @@ TEST(BlockManifold, ReductionKeepsTheDeepestAndTheArea) {
   }
   gaps[2] = -0.001;  // the deepest
   std::array<int, kManifoldPoints> kept{};
-  const int n = reduce_points(Vec3::UnitZ(), points.data(), gaps.data(), 6, kept);
+  const int n = reduce_points(Vec3::UnitZ(), Vec3::UnitX(), 1e-4, points.data(), gaps.data(), 6,
+                              kept);
   ASSERT_EQ(n, 4);
   EXPECT_EQ(kept[0], 2);
   EXPECT_EQ(kept[1], 5);  // opposite the deepest
@@ -137,6 +139,47 @@ TEST(BlockManifold, ReductionKeepsTheDeepestAndTheArea) {
   const Real area = 0.5 * (std::abs(d.cross(points[kept[2]] - points[2]).z()) +
                            std::abs(d.cross(points[kept[3]] - points[2]).z()));
   EXPECT_NEAR(area, std::sqrt(3.0), 1e-12);  // the hexagon's is 3 sqrt(3) / 2
+}
+
+// A face lying flat on a face: twelve corners at one depth to round-off (two hexagons, one
+// turned 7 degrees). Trembling by 1e-12 in place and depth, as a resting coin does from step to
+// step, must not change which four are kept (the warm start finds a point again only where it
+// was), while one corner deeper by more than `equal_depth` is always kept first.
+TEST(BlockManifold, ReductionOfAFlatFaceDoesNotFlicker) {
+  constexpr int kCorners = 12;
+  std::array<Vec3, kCorners> points;
+  std::array<Real, kCorners> gaps{};
+  for (int k = 0; k < kCorners; ++k) {
+    const Real phi = k * std::numbers::pi / 6 + (k % 2 ? 0.061 : 0);
+    points[k] = Vec3(std::cos(phi), std::sin(phi), 0);
+  }
+  const Vec3 edge = points[1] - points[0];
+  std::array<int, kManifoldPoints> first{};
+  ASSERT_EQ(reduce_points(Vec3::UnitZ(), edge, 1e-4, points.data(), gaps.data(), kCorners, first),
+            4);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<Real> tremor(-1e-12, 1e-12);
+  int changed = 0;
+  for (int trial = 0; trial < 1000; ++trial) {
+    std::array<Vec3, kCorners> moved = points;
+    std::array<Real, kCorners> moved_gaps{};
+    for (int k = 0; k < kCorners; ++k) {
+      moved[k] += Vec3(tremor(random), tremor(random), 0);
+      moved_gaps[k] = tremor(random);
+    }
+    std::array<int, kManifoldPoints> kept{};
+    reduce_points(Vec3::UnitZ(), edge, 1e-4, moved.data(), moved_gaps.data(), kCorners, kept);
+    changed += kept != first;
+  }
+  EXPECT_EQ(changed, 0);
+  // A corner 1e-3 deeper than the rest: kept first, wherever it is.
+  for (int deep = 0; deep < kCorners; ++deep) {
+    std::array<Real, kCorners> tilted{};
+    tilted[deep] = -1e-3;
+    std::array<int, kManifoldPoints> kept{};
+    reduce_points(Vec3::UnitZ(), edge, 1e-4, points.data(), tilted.data(), kCorners, kept);
+    EXPECT_EQ(kept[0], deep);
+  }
 }
 
 }  // namespace

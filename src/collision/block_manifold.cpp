@@ -99,10 +99,22 @@ std::pair<Vec3, Vec3> closest_points(const Vec3& p1, const Vec3& d1, const Vec3&
   return {p1 + s * d1, p2 + t * d2};
 }
 
-// Copies the kept candidates into the manifold.
-void keep(const std::vector<Vec3>& points, const std::vector<Real>& gaps, Manifold& out) {
+// Points whose gaps differ by less than this fraction of the smaller block's bounding radius
+// count as equally deep (reduce_points).
+constexpr Real kEqualDepth = 1e-4;
+
+// The first edge of a placed block's polygon, in the world: a direction that turns with it.
+Vec3 face_edge(const Block& block, const WorldBlock& world, int face) {
+  const std::vector<int>& nodes = block.polygons()[face].nodes;
+  return world.nodes[nodes[1]] - world.nodes[nodes[0]];
+}
+
+// Copies the kept candidates into the manifold: `along`, an edge of the face that made them,
+// orders points of one depth (reduce_points), `size` the smaller block's bounding radius.
+void keep(const std::vector<Vec3>& points, const std::vector<Real>& gaps, const Vec3& along,
+          Real size, Manifold& out) {
   std::array<int, kManifoldPoints> kept{};
-  out.count = reduce_points(out.normal, points.data(), gaps.data(),
+  out.count = reduce_points(out.normal, along, kEqualDepth * size, points.data(), gaps.data(),
                             static_cast<int>(points.size()), kept);
   for (int k = 0; k < out.count; ++k) {
     out.point[k] = points[kept[k]];
@@ -160,19 +172,22 @@ bool clip_reference_face(const Block& a, const WorldBlock& wa, const Block& b,
                          const WorldBlock& wb, Real margin, ManifoldScratch& s, Manifold& out) {
   std::vector<Vec3>& candidates = s.candidates;
   std::vector<Real>& gaps = s.candidate_gaps;
+  Vec3 along;
   if (out.feature == ManifoldFeature::face_of_b) {
     const int face = out.feature_b;
     clip_faces(b, wb.nodes, wb.normals[face], wb.offsets[face], face, a, wa.nodes, wa.normals,
                margin, s, candidates, gaps);
     out.normal = -wb.normals[face];
+    along = face_edge(b, wb, face);
   } else {
     const int face = out.feature_a;
     clip_faces(a, wa.nodes, wa.normals[face], wa.offsets[face], face, b, wb.nodes, wb.normals,
                margin, s, candidates, gaps);
     out.normal = wa.normals[face];
+    along = face_edge(a, wa, face);
   }
   if (candidates.empty()) return false;
-  keep(candidates, gaps, out);
+  keep(candidates, gaps, along, std::min(a.bounding_radius(), b.bounding_radius()), out);
   return true;
 }
 
@@ -206,30 +221,52 @@ void place_block(const Block& block, const BlockPose& pose, WorldBlock& out) {
   }
 }
 
-int reduce_points(const Vec3& normal, const Vec3* points, const Real* gaps, int count,
-                  std::array<int, kManifoldPoints>& kept) {
+int reduce_points(const Vec3& normal, const Vec3& along, Real equal_depth, const Vec3* points,
+                  const Real* gaps, int count, std::array<int, kManifoldPoints>& kept) {
   if (count <= kManifoldPoints) {
     for (int i = 0; i < count; ++i) kept[i] = i;
     return count;
   }
-  int deepest = 0;
-  for (int i = 1; i < count; ++i)
-    if (gaps[i] < gaps[deepest]) deepest = i;
+  // Why each choice is made so that it stays the same from step to step while the bodies
+  // barely move: the warm start carries a point's impulse to the next step only where a point
+  // is found again at the same place (warm_start.hpp). A face resting flat on a face has all
+  // its corners at one depth to round-off; "the deepest" of them then changes with every
+  // tremor, the four kept points jump around the polygon, the warm start is lost, and 20
+  // sweeps leave a column of coins rocking and creeping at 0.1-1 cm/s forever (docs/
+  // benchmarks.md). So the first point is the deepest only where it is deeper than the others
+  // by `equal_depth`; among points of one depth, the farthest along a direction turned with the
+  // face (`along`, turned by 0.3 rad about the normal so that it is parallel to no edge of a
+  // regular polygon). The other choices take a later point only where it is better by more
+  // than round-off, so that exact ties keep the earlier one.
+  const Vec3 in_plane = along - normal.dot(along) * normal;
+  const Vec3 direction = std::cos(0.3) * in_plane + std::sin(0.3) * normal.cross(in_plane);
+  Real least_gap = gaps[0];
+  for (int i = 1; i < count; ++i) least_gap = std::min(least_gap, gaps[i]);
+  int deepest = -1;
+  for (int i = 0; i < count; ++i) {
+    if (gaps[i] > least_gap + equal_depth) continue;
+    if (deepest < 0 || direction.dot(points[i]) > direction.dot(points[deepest])) deepest = i;
+  }
+  constexpr Real kBetter = 1 + 1e-9;
   int farthest = deepest == 0 ? 1 : 0;
-  for (int i = 0; i < count; ++i)
-    if ((points[i] - points[deepest]).squaredNorm() >
-        (points[farthest] - points[deepest]).squaredNorm())
+  Real farthest_distance = (points[farthest] - points[deepest]).squaredNorm();
+  for (int i = 0; i < count; ++i) {
+    const Real d = (points[i] - points[deepest]).squaredNorm();
+    if (d > kBetter * farthest_distance) {
+      farthest_distance = d;
       farthest = i;
+    }
+  }
   const Vec3 chord = points[farthest] - points[deepest];
   auto side = [&](int i) { return normal.dot(chord.cross(points[i] - points[deepest])); };
   int left = -1, right = -1;
   Real most_left = 0, most_right = 0;
   for (int i = 0; i < count; ++i) {
     const Real a = side(i);
-    if (a > most_left) {
+    if (a > kBetter * most_left) {
       most_left = a;
       left = i;
-    } else if (a < most_right) {
+    } else if (a < kBetter * most_right) {
       most_right = a;
       right = i;
     }
@@ -288,7 +325,9 @@ bool block_manifold(const Block& a, const WorldBlock& wa, const Block& b, const 
 }
 
 bool rebuild_manifold(const Block& a, const WorldBlock& wa, const Block& b, const WorldBlock& wb,
-                      Real margin, const Manifold& detected, ManifoldScratch& s, Manifold& out) {
+                      Real margin, const Manifold& detected, ManifoldScratch& s, Manifold& out,
+                      bool* searched) {
+  if (searched) *searched = false;
   out.count = 0;
   out.feature = detected.feature;
   out.feature_a = detected.feature_a;
@@ -324,6 +363,7 @@ bool rebuild_manifold(const Block& a, const WorldBlock& wa, const Block& b, cons
       }
     }
     // Turned parallel or no longer the supports: the whole search.
+    if (searched) *searched = true;
     return block_manifold(a, wa, b, wb, margin, s, out);
   }
   if (detected.feature != ManifoldFeature::face_of_a &&
@@ -343,6 +383,7 @@ bool rebuild_manifold(const Block& a, const WorldBlock& wa, const Block& b, cons
   if (out.count > 0 && lowest >= shallowest_kept - tolerance) return true;
   // A node deeper than the clipped face's corners (or none of them within the margin while a
   // node is): the whole search.
+  if (searched) *searched = true;
   return block_manifold(a, wa, b, wb, margin, s, out);
 }
 
@@ -395,7 +436,7 @@ bool wall_manifold(const Block& block, const WorldBlock& world, const Vec3& wall
   if (!has_deepest) add(deepest);
   out.normal = -wall_normal;
   out.feature = ManifoldFeature::wall;
-  keep(candidates, gaps, out);
+  keep(candidates, gaps, face_edge(block, world, incident), block.bounding_radius(), out);
   return out.count > 0;
 }
 

@@ -84,9 +84,10 @@ bool block_manifold(const Block& a, const BlockPose& pose_a, const Block& b,
 // with the incident face chosen again), at the blocks' placements `world_a`, `world_b`, within
 // `margin`: what the whole search would find while the pair's relative pose has changed too
 // little for another axis to win. False, with count 0, when nothing is within the margin.
+// `searched` (if given): whether the features no longer held and the whole search answered.
 bool rebuild_manifold(const Block& a, const WorldBlock& world_a, const Block& b,
                       const WorldBlock& world_b, Real margin, const Manifold& detected,
-                      ManifoldScratch& scratch, Manifold& out);
+                      ManifoldScratch& scratch, Manifold& out, bool* searched = nullptr);
 
 // The patch of a convex block and a wall plane (normal into the space where bodies live; the
 // patch normal is then -wall_normal): the corners of the block's face most opposed to the wall,
@@ -96,9 +97,11 @@ bool wall_manifold(const Block& block, const WorldBlock& world, const Vec3& wall
 bool wall_manifold(const Block& block, const BlockPose& pose, const Vec3& wall_point,
                    const Vec3& wall_normal, Real margin, ManifoldScratch& scratch, Manifold& out);
 
-// Keeps at most four of `count` candidate points: the deepest, the farthest from it, and the two
-// that add the most area on either side of the line through them. Exposed for tests.
-int reduce_points(const Vec3& normal, const Vec3* points, const Real* gaps, int count,
-                  std::array<int, kManifoldPoints>& kept);
+// Keeps at most four of `count` candidate points: the deepest (among points deeper than the
+// least gap plus `equal_depth`, the farthest along `along`, a direction fixed to the face),
+// the farthest from it, and the two that add the most area on either side of the line through
+// them, each choice the same while the points barely move. Exposed for tests.
+int reduce_points(const Vec3& normal, const Vec3& along, Real equal_depth, const Vec3* points,
+                  const Real* gaps, int count, std::array<int, kManifoldPoints>& kept);
 
 }  // namespace tem
