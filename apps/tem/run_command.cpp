@@ -44,6 +44,11 @@ void print_summary(const Model& model, const State& state, const Workspace& w, d
                t.unconverged_steps, t.scaled_steps, t.patches / steps, t.points / steps,
                t.patches > 0 ? 1e6 * wall / static_cast<double>(t.patches) : 0.0, e.kinetic,
                e.potential, e.total());
+  if (t.block_pairs > 0 && model.scene.contact.pair_cache)
+    std::fprintf(stderr,
+                 "  pair cache: %.1f %% of %.1f block pairs per step took last step's features\n",
+                 100.0 * static_cast<double>(t.cached_pairs) / static_cast<double>(t.block_pairs),
+                 static_cast<double>(t.block_pairs) / steps);
   if (model.scene.sleep)
     std::fprintf(stderr, "  sleep: %lld of %zu bodies asleep at the end\n",
                  sleeping_bodies(state), state.bodies.size());

@@ -155,8 +155,12 @@ struct ContactDef {
   ContactSolver solver = ContactSolver::rows;
   // Sub-steps of a step (contact_margins.hpp, refreshed_patches.hpp): contacts are detected once per
   // step, then solved and integrated this many times at time_step / substeps, each sub-step
-  // carrying the detected points with the bodies. 1: one solve per detection, as before.
+  // rebuilding the detected patches from their features. 1: one solve per detection, as before.
   int substeps = 1;
+  // With contact before overlap: a block pair that has barely moved since its last separating-
+  // axis search takes last step's features again (src/contact/pair_cache.hpp); false: every
+  // pair is searched at every step. Not used over MPI ranks.
+  bool pair_cache = true;
   // Coefficients of named pairs of materials (process_def.hpp), overriding the rule for pairs
   // without an entry.
   std::vector<MaterialPairDef> pairs;

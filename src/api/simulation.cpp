@@ -109,7 +109,7 @@ void Simulation::Impl::restore(const Checkpoint& checkpoint) {
   workspace.loads.torque.assign(n, Vec3::Zero());
   removed.clear();
   reserve_capacity();
-  restore_memory(checkpoint, workspace.forces);
+  restore_memory(checkpoint, workspace.forces, workspace.contact.features);
   refresh_views();
 }
 
@@ -145,7 +145,8 @@ void Simulation::Impl::advance_one() {
   // As `tem run`: a checkpoint where a step begins, before its rows (resuming redoes them).
   if (output && checkpoint_every > 0 && k % checkpoint_every == 0 && k != first_step)
     tem::write_checkpoint(directory + "/checkpoint.bin",
-                     make_checkpoint(model.scene, state, workspace.forces, output->sizes()));
+                     make_checkpoint(model.scene, state, workspace.forces,
+                                     workspace.contact.features, output->sizes()));
   workspace.loads.update_active();
   find_contact_forces(model, state, workspace);
   if (output && k % every == 0 && written_step != k) write_found_row();
@@ -388,7 +389,8 @@ void Simulation::finish_recording() {
 void Simulation::write_checkpoint(const std::string& path) {
   Impl& m = *impl_;
   const OutputSizes sizes = m.output ? m.output->sizes() : OutputSizes{0, 0, -1};
-  tem::write_checkpoint(path, make_checkpoint(m.model.scene, m.state, m.workspace.forces, sizes));
+  tem::write_checkpoint(path, make_checkpoint(m.model.scene, m.state, m.workspace.forces,
+                                              m.workspace.contact.features, sizes));
 }
 
 const SceneDef& Simulation::scene() const { return impl_->model.scene; }

@@ -39,7 +39,9 @@ struct Simulation::Impl {
   long long written_step = -1;     // the step whose row was written last
 
   explicit Impl(Model m);
-  PopulationLinks links() { return {&workspace.forces, &workspace.patches, &workspace.loads}; }
+  PopulationLinks links() {
+    return {&workspace.forces, &workspace.patches, &workspace.loads, &workspace.contact.features};
+  }
   // Room for every body the run can hold, so that the state arrays (and the views on them)
   // never move when bodies are added.
   void reserve_capacity();

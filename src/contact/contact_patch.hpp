@@ -29,6 +29,11 @@ struct ContactPatch {
   // whose pair made the patch, from which a sub-step rebuilds it (refreshed_patches.hpp); -1
   // for a wall's side.
   int block_a = -1, block_b = -1;
+  // Of a block pair with contact before overlap: B's block frame in A's at the separating-axis
+  // search that found the manifold's features (this step's, or the one the pair cache took them
+  // from: pair_cache.hpp).
+  Mat3 searched_rotation = Mat3::Identity();
+  Vec3 searched_offset = Vec3::Zero();
 };
 
 // The patch of a manifold of contact before overlap: its points' mean, minus its smallest gap as

@@ -56,6 +56,7 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
   const long long n_all = n_block + static_cast<long long>(wall_pairs.size());
   const long long runs = (n_all + kRun - 1) / kRun;
   w.threads.resize(static_cast<size_t>(max_threads()));
+  for (PairScratch& s : w.threads) s.pairs_tested = s.pairs_cached = 0;
   const bool ahead = !w.reach.empty();
   if (ahead) {
     // Each block's world nodes, planes and edges once, for all the pairs it is in; blocks in
@@ -79,14 +80,43 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
         const Block &a = block_of(pair.a), &b = block_of(pair.b);
         if (ahead) {
           const int body_a = proxies[pair.a].body, body_b = proxies[pair.b].body;
+          const int block_a = proxies[pair.a].instance, block_b = proxies[pair.b].instance;
+          const Real margin = w.reach[body_a] + w.reach[body_b];
+          Mat3 rotation;
+          Vec3 offset;
+          relative_pose(poses[pair.a], poses[pair.b], rotation, offset);
+          // Last step's features where the pair has barely moved since they were searched.
+          const CachedFeatures* cached =
+              w.use_features
+                  ? cached_features(w.features, body_a, block_a, body_b, block_b)
+                  : nullptr;
+          if (cached && (!features_fit(*cached, w.world[pair.a], w.world[pair.b]) ||
+                         !near_search(*cached, rotation, offset,
+                                      std::min(a.bounding_radius(), b.bounding_radius()))))
+            cached = nullptr;
           Manifold m;
-          if (block_manifold(a, w.world[pair.a], b, w.world[pair.b],
-                             w.reach[body_a] + w.reach[body_b], s.manifold, m)) {
+          bool found, searched = true;
+          if (cached) {
+            Manifold features;
+            features.feature = cached->feature;
+            features.feature_a = cached->feature_a;
+            features.feature_b = cached->feature_b;
+            found = rebuild_manifold(a, w.world[pair.a], b, w.world[pair.b], margin, features,
+                                     s.manifold, m, &searched);
+          } else {
+            found = block_manifold(a, w.world[pair.a], b, w.world[pair.b], margin, s.manifold, m);
+          }
+          ++s.pairs_tested;
+          if (cached && !searched) ++s.pairs_cached;
+          if (found) {
             out.push_back(manifold_patch(m));
-            out.back().body_a = body_a;
-            out.back().body_b = body_b;
-            out.back().block_a = proxies[pair.a].instance;
-            out.back().block_b = proxies[pair.b].instance;
+            ContactPatch& p = out.back();
+            p.body_a = body_a;
+            p.body_b = body_b;
+            p.block_a = block_a;
+            p.block_b = block_b;
+            p.searched_rotation = searched ? rotation : cached->rotation;
+            p.searched_offset = searched ? offset : cached->offset;
           }
           continue;
         }
@@ -154,6 +184,12 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
   // (Patches of contact before overlap stay one per block pair: each is one face-on-face or
   // edge-on-edge place with its own normal.)
   if (!ahead) merge_touching_patches(patches);
+  if (ahead && w.use_features) keep_features(patches, w.features);
+  w.pairs_tested = w.pairs_cached = 0;
+  for (const PairScratch& s : w.threads) {
+    w.pairs_tested += s.pairs_tested;
+    w.pairs_cached += s.pairs_cached;
+  }
 }
 
 }  // namespace tem

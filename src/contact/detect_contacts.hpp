@@ -6,6 +6,7 @@
 
 #include "collision/broad_phase.hpp"
 #include "collision/narrow_phase.hpp"
+#include "contact/pair_cache.hpp"
 #include "contact/contact_patch.hpp"
 #include "contact/patches.hpp"
 #include "world/model.hpp"
@@ -21,6 +22,7 @@ struct PairScratch {
   PairFeatures pair;
   WallFeatures wall;
   PatchScratch patch;
+  long long pairs_tested = 0, pairs_cached = 0;  // block pairs of contact before overlap
   ManifoldScratch manifold;
 };
 
@@ -34,6 +36,13 @@ struct ContactWorkspace {
   std::vector<Real> reach;
   std::vector<WorldBlock> world;  // the blocks placed for this step (contact before overlap)
   std::vector<char> in_pair;      // per block: in some pair this step, so placed
+  // The pair cache (pair_cache.hpp): the features of the last find_patches' block pairs, and
+  // whether find_patches takes them and keeps this step's (set per step by its caller).
+  std::vector<CachedFeatures> features;
+  bool use_features = false;
+  // Of the last find_patches: block pairs tested with contact before overlap, and how many of
+  // them took cached features that still held (no search).
+  long long pairs_tested = 0, pairs_cached = 0;
   std::vector<int> order;                  // sorting the patches by body pair
   std::vector<ContactPatch> sorted;        // the patches in that order, swapped with the result
 };

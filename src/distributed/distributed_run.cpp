@@ -16,7 +16,7 @@ void write_distributed_checkpoint(const Domain& domain, const Model& model, cons
   domain.gather_memory(w.forces, memory);
   if (domain.rank() != 0) return;
   const OutputSizes sizes = plan.output ? plan.output->sizes() : OutputSizes{0, 0, -1};
-  write_checkpoint(plan.checkpoint_file, make_checkpoint(model.scene, whole, memory, sizes));
+  write_checkpoint(plan.checkpoint_file, make_checkpoint(model.scene, whole, memory, {}, sizes));
 }
 
 // Rank 0's rows for the current state, with the contacts of the step that starts from it.

@@ -18,7 +18,9 @@ constexpr char kMagic[8] = {'T', 'E', 'M', 'C', 'K', 'P', 'T', '\n'};
 // roll2).
 // 3: the sleep of bodies at rest (each body's rest_time, asleep, island), after the contact
 // memory. Version 2 is still read: its bodies are awake, their rest timers at zero.
-constexpr std::uint32_t kVersion = 3;
+// 4: the pair cache's features (CachedFeatures), after the sleep. Versions 2 and 3 are still
+// read, with an empty cache: the first resumed step searches every pair.
+constexpr std::uint32_t kVersion = 4;
 constexpr std::uint32_t kOldestVersion = 2;
 
 std::uint64_t fnv1a(const char* data, std::size_t size) {
@@ -35,7 +37,7 @@ class Writer {
  public:
   template <class T>
   void value(const T& v) {
-    static_assert(std::is_arithmetic_v<T>);
+    static_assert(std::is_arithmetic_v<T> || std::is_enum_v<T>);
     raw(&v, sizeof v);
   }
   template <int R, int C>
@@ -59,7 +61,7 @@ class Reader {
       : bytes_(bytes), end_(end), path_(path) {}
   template <class T>
   void value(T& v) {
-    if constexpr (std::is_arithmetic_v<T>) {
+    if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T>) {
       take(&v, sizeof v);
     } else {
       take(v.data(), sizeof(Real) * v.size());
@@ -114,6 +116,9 @@ void fields(B& b, F&& f) {
     f(b.placed), f(b.draws);
   } else if constexpr (std::is_same_v<std::remove_const_t<B>, SensorTotals>) {
     f(b.count), f(b.mass), f(b.force), f(b.torque), f(b.steps);
+  } else if constexpr (std::is_same_v<std::remove_const_t<B>, CachedFeatures>) {
+    f(b.body_a), f(b.block_a), f(b.body_b), f(b.block_b), f(b.feature), f(b.feature_a),
+        f(b.feature_b), f(b.rotation), f(b.offset);
   } else {
     static_assert(std::is_same_v<std::remove_const_t<B>, PenaltySpring>);
     f(b.body_a), f(b.body_b), f(b.wall), f(b.point), f(b.stretch);
@@ -145,7 +150,7 @@ std::uint64_t scene_fingerprint(const SceneDef& scene) {
 }
 
 Checkpoint make_checkpoint(const SceneDef& scene, const State& state, const ContactForces& forces,
-                           const OutputSizes& sizes) {
+                           const std::vector<CachedFeatures>& features, const OutputSizes& sizes) {
   Checkpoint c;
   c.scene_fingerprint = scene_fingerprint(scene);
   c.sizes = sizes;
@@ -154,10 +159,13 @@ Checkpoint make_checkpoint(const SceneDef& scene, const State& state, const Cont
   c.impulses = forces.impulses;
   c.friction = forces.friction;
   c.springs = forces.springs;
+  c.features = features;
   return c;
 }
 
-void restore_memory(const Checkpoint& checkpoint, ContactForces& forces) {
+void restore_memory(const Checkpoint& checkpoint, ContactForces& forces,
+                    std::vector<CachedFeatures>& features) {
+  features = checkpoint.features;
   forces.points = checkpoint.points;
   forces.impulses = checkpoint.impulses;
   forces.friction = checkpoint.friction;
@@ -192,6 +200,7 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
     w.value(b.asleep);
     w.value(b.island);
   }
+  write_records(w, c.features);
   w.value(fnv1a(w.bytes().data(), w.bytes().size()));
 
   const std::string temporary = path + ".tmp";
@@ -254,6 +263,13 @@ Checkpoint read_checkpoint(const std::string& path) {
       r.value(b.asleep);
       r.value(b.island);
     }
+  }
+  if (version >= 4) {
+    c.features = read_records<CachedFeatures>(r);
+    for (const CachedFeatures& e : c.features)
+      if (e.feature != ManifoldFeature::edges && e.feature != ManifoldFeature::face_of_a &&
+          e.feature != ManifoldFeature::face_of_b)
+        throw std::runtime_error(path + ": the checkpoint's pair cache holds an unknown feature");
   }
   if (!r.at_end()) throw std::runtime_error(path + ": the checkpoint has trailing bytes");
   return c;

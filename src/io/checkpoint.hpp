@@ -3,9 +3,10 @@
 //
 // What that takes besides the State: the contact solver's memory (the last step's contact
 // points, their impulses and the patches' friction, which warm-start the next step, and the
-// penalty model's tangential springs). A warm start changes where Gauss-Seidel stops, so a
-// resumed run without it would differ in the last bits. Everything else a step keeps between
-// steps is scratch, rebuilt from the State.
+// penalty model's tangential springs), and the pair cache's features (pair_cache.hpp). A warm
+// start changes where Gauss-Seidel stops and a cached feature which search answers a pair, so
+// a resumed run without them would differ in the last bits. Everything else a step keeps
+// between steps is scratch, rebuilt from the State.
 //
 // The file also records how long each output file was when the checkpoint was taken: the rows
 // written after it are cut off on resuming and written again by the continued run, so the files
@@ -21,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/pair_cache.hpp"
 #include "forces/contact_forces.hpp"
 #include "world/model.hpp"
 
@@ -43,6 +45,7 @@ struct Checkpoint {
   std::vector<PointImpulse> impulses;
   std::vector<PatchFriction> friction;
   std::vector<PenaltySpring> springs;
+  std::vector<CachedFeatures> features;  // the pair cache (version 4 on; empty before)
 };
 
 // The fingerprint of a scene: a hash of the scene as `scene.json` states it (every default
@@ -50,12 +53,14 @@ struct Checkpoint {
 // it was taken of, possibly with a longer duration.
 std::uint64_t scene_fingerprint(const SceneDef& scene);
 
-// The checkpoint of `state`, whose next step will start from the memory in `forces`.
+// The checkpoint of `state`, whose next step will start from the memory in `forces` and the
+// pair cache `features`.
 Checkpoint make_checkpoint(const SceneDef& scene, const State& state, const ContactForces& forces,
-                           const OutputSizes& sizes);
+                           const std::vector<CachedFeatures>& features, const OutputSizes& sizes);
 
-// Puts a checkpoint's memory back into a fresh ContactForces.
-void restore_memory(const Checkpoint& checkpoint, ContactForces& forces);
+// Puts a checkpoint's memory back into a fresh ContactForces and pair cache.
+void restore_memory(const Checkpoint& checkpoint, ContactForces& forces,
+                    std::vector<CachedFeatures>& features);
 
 // Writes atomically (temporary file, then rename). Throws std::runtime_error naming the file.
 void write_checkpoint(const std::string& path, const Checkpoint& checkpoint);

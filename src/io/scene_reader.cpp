@@ -99,7 +99,7 @@ const KeyList kContactKeys = {"model",     "friction",   "restitution",
                               "points",    "law",        "tangential_stiffness",
                               "tolerance", "max_sweeps", "sweep_order",
                               "margin",    "solver",     "pairs",
-                              "substeps"};
+                              "substeps",  "pair_cache"};
 const KeyList kContainerKeys = {"min", "max", "material"};
 const KeyList kRegionKeys = {"min", "max"};
 const KeyList kWallKeys = {"point", "normal", "material", "removed_at"};
@@ -286,6 +286,7 @@ class SceneReader {
     r_.read_number(j, path, "tolerance", &contact->tolerance, Bound::positive);
     r_.read_int(j, path, "max_sweeps", &contact->max_sweeps, 1, 1'000'000);
     r_.read_int(j, path, "substeps", &contact->substeps, 1, 1'000);
+    r_.read_bool(j, path, "pair_cache", &contact->pair_cache);
     if (const Json* o = Reader::get(j, "sweep_order")) {
       if (auto coloured = r_.choice<bool>(*o, child(path, "sweep_order"),
                                           {{"patches", false}, {"colours", true}})) {

@@ -93,6 +93,10 @@ void renumber_memory(const std::vector<int>& map, const PopulationLinks& links) 
     patches.resize(next);
     if (parallel) forces->resize(next);
   }
+  if (links.features) {
+    std::erase_if(*links.features, [&](const CachedFeatures& e) { return gone(e.body_a, e.body_b); });
+    for (CachedFeatures& e : *links.features) renumber(e.body_a, e.body_b);
+  }
   if (!links.forces) return;
   ContactForces& f = *links.forces;
   const bool with_impulses = f.impulses.size() == f.points.size();

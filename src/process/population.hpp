@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "contact/contact_patch.hpp"
+#include "contact/pair_cache.hpp"
 #include "forces/contact_forces.hpp"
 #include "world/model.hpp"
 
@@ -44,6 +45,7 @@ struct PopulationLinks {
   ContactForces* forces = nullptr;
   std::vector<ContactPatch>* patches = nullptr;
   ExternalLoads* loads = nullptr;
+  std::vector<CachedFeatures>* features = nullptr;  // the pair cache (contact/pair_cache.hpp)
 };
 
 // The most bodies the run can hold at once: those at the start and every inlet's count.

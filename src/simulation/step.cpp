@@ -127,9 +127,15 @@ void find_contact_forces(const Model& model, const State& state, Workspace& w) {
   if (scene.sleep) leave_sleepers_out(model, state, w.loads, w.sleep, w.contact.broad_phase);
   w.times.broad_phase += seconds_since(clock);
 
-  // 2-3. Narrow phase and patches: node in element, edge through face, grouping.
+  // 2-3. Narrow phase and patches: node in element, edge through face, grouping; a pair that
+  // has barely moved takes last step's features (pair_cache.hpp; one process only: the ranks'
+  // checkpoints do not hold them).
+  w.contact.use_features = scene.contact.pair_cache && w.subset.empty();
+  if (!w.contact.use_features) w.contact.features.clear();
   find_patches(model, patch_variant(scene), w.contact, w.patches);
   w.times.narrow_phase += seconds_since(clock);
+  w.times.block_pairs += w.contact.pairs_tested;
+  w.times.cached_pairs += w.contact.pairs_cached;
 
   // 4. Forces: the contact impulses of the scene's force model, as forces held over the step
   // (with sub-steps, over its first sub-step).

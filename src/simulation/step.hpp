@@ -30,6 +30,9 @@ struct StageTimes {
   long long outran_margin = 0;    // bodies that moved farther in a step than their reach
   long long patches = 0;          // contact patches and points, summed over the steps
   long long points = 0;
+  // Block pairs tested with contact before overlap, and those that took last step's features
+  // (contact.pair_cache), summed over the steps.
+  long long block_pairs = 0, cached_pairs = 0;
 };
 
 struct Workspace {
