@@ -34,7 +34,7 @@ def decode(data, offset, dtype):
 def read_vtu(path):
     """(piece, arrays, time): the Piece element, {name: values} of the Piece's arrays (n x k
     for k components) and the FieldData TimeValue. Raises ValueError if the appended data does
-    not hold exactly the declared arrays, one after another."""
+    not hold exactly the declared arrays, one after another in some order."""
     with open(path, "rb") as f:
         raw = f.read()
     xml_end = raw.index(OPENING) + len(OPENING)
@@ -43,8 +43,11 @@ def read_vtu(path):
     root = ET.fromstring(raw[:xml_end] + CLOSING[1:])
     data = raw[xml_end + 2:len(raw) - len(CLOSING)]
     arrays = {}
-    position = 0  # the arrays lie in the order of the XML, with nothing between them
-    for a in root.iter("DataArray"):
+    # The arrays tile the data with nothing between them, in the reverse of the XML's order
+    # (vtu_binary.hpp says why); any order of offsets is read.
+    declared = list(root.iter("DataArray"))
+    position = 0
+    for a in sorted(declared, key=lambda a: int(a.attrib["offset"])):
         if a.attrib["format"] != "appended" or int(a.attrib["offset"]) != position:
             raise ValueError(f"{path}: {a.attrib['Name']} is not at offset {position}")
         values, position = decode(data, position, TYPES[a.attrib["type"]])
@@ -52,5 +55,6 @@ def read_vtu(path):
         arrays[a.attrib["Name"]] = values.reshape(-1, components) if components > 1 else values
     if position != len(data):
         raise ValueError(f"{path}: {len(data) - position} bytes after the last array")
+    arrays = {a.attrib["Name"]: arrays[a.attrib["Name"]] for a in declared}  # in the XML's order
     time = arrays.pop("TimeValue")
     return root.find("UnstructuredGrid/Piece"), arrays, float(time[0])

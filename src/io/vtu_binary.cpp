@@ -34,7 +34,10 @@ void VtuBinary::array(const char* type, const char* name, const std::string& ext
   xml_ += '"';
   // Scalars go without NumberOfComponents, as VTK writes them: readers then give 1-D arrays.
   xml_ += extra;
-  xml_ += " format=\"appended\" offset=\"" + std::to_string(data_.size()) + "\"/>\n";
+  xml_ += " format=\"appended\" offset=\"";
+  offset_at_.push_back(xml_.size());  // the offset goes here once the layout is known (finish)
+  xml_ += "\"/>\n";
+  chunk_start_.push_back(data_.size());
   append_zlib_blocks(data_, bytes, size);
 }
 
@@ -87,14 +90,37 @@ void VtuBinary::cells(const std::vector<std::int64_t>& connectivity, int nodes_p
 }
 
 std::string VtuBinary::finish() {
+  // The arrays' bytes go in the reverse of their XML order (vtu_binary.hpp says why): the last
+  // array declared at offset 0, the first one last.
+  const size_t n = chunk_start_.size();
+  std::vector<size_t> offset(n);
+  size_t next = 0;
+  for (size_t k = n; k-- > 0;) {
+    offset[k] = next;
+    next += (k + 1 < n ? chunk_start_[k + 1] : data_.size()) - chunk_start_[k];
+  }
+  std::string out;
+  out.reserve(xml_.size() + data_.size() + 20 * n + 128);
+  size_t copied = 0;
+  for (size_t k = 0; k < n; ++k) {
+    out.append(xml_, copied, offset_at_[k] - copied);
+    out += std::to_string(offset[k]);
+    copied = offset_at_[k];
+  }
+  out.append(xml_, copied, std::string::npos);
   // The raw data starts after the underscore and ends before the newline (VTK's layout; meshio
   // relies on both).
-  xml_ += "</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
-  xml_.reserve(xml_.size() + data_.size() + 32);
-  xml_ += data_;
-  xml_ += "\n</AppendedData>\n</VTKFile>\n";
+  out += "</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
+  for (size_t k = n; k-- > 0;) {
+    const size_t end = k + 1 < n ? chunk_start_[k + 1] : data_.size();
+    out.append(data_, chunk_start_[k], end - chunk_start_[k]);
+  }
+  out += "\n</AppendedData>\n</VTKFile>\n";
+  xml_.clear();
   data_.clear();
-  return std::move(xml_);
+  offset_at_.clear();
+  chunk_start_.clear();
+  return out;
 }
 
 }  // namespace tem

@@ -10,7 +10,13 @@
 // "-0", csv_number.hpp), every other double bit for bit.
 //
 // The XML order is the one VTK writes: the Piece's PointData, CellData, Points, then Cells.
-// Call the member functions in that order. The whole file is built in memory, so a frame is
+// Call the member functions in that order. The arrays' bytes are appended in the reverse of
+// that order, the last array declared first. Why: Debian's meshio reads raw appended data by
+// rewriting each array's offset into one of its own and looking the next array up by its raw
+// offset, first match in XML order; laid out in XML order, an array already rewritten could
+// carry the very offset of one still to come and be read in its place (a contacts frame of 52
+// points failed so: tests/paraview/check_paraview.py). Laid out in reverse, the array looked
+// up always comes before every rewritten one. ParaView reads either layout. The whole file is built in memory, so a frame is
 // written with a single write.
 #pragma once
 
@@ -56,8 +62,10 @@ class VtuBinary {
   void scratch_array(const char* name, const std::string& extra);
   void fill_scratch(const std::vector<Vec3>& values);
 
-  std::string xml_;            // the XML up to the end of the Piece
-  std::string data_;           // the appended data, every array's header and zlib blocks
+  std::string xml_;            // the XML up to the end of the Piece, without the offsets
+  std::string data_;           // every array's header and zlib blocks, in XML order
+  std::vector<size_t> offset_at_;    // per array: where in xml_ its offset goes
+  std::vector<size_t> chunk_start_;  // per array: where in data_ its bytes start
   std::vector<Real> scratch_;  // Float64 values on their way into data_
 };
 

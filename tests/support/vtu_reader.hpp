@@ -2,8 +2,9 @@
 // DataArray tags, and each array's bytes decoded from the appended raw data (VTK's zlib blocks,
 // UInt64 header). It checks the layout as it goes and throws std::runtime_error, saying what is
 // wrong, where a file is not as VTK's readers expect: the "\n_" before the data and the "\n"
-// after it, every array at the offset where the one before it ends (in the order of the XML,
-// nothing between or after them), every block inflating to the size the header gives.
+// after it, the arrays tiling the data (each, in the order of their offsets, starting where the
+// one before it ends, nothing between or after them; TEM lays them out in the reverse of the
+// XML's order, vtu_binary.hpp), every block inflating to the size the header gives.
 //
 // It shares no code with the writer, so that a test of the writer does not read the writer's
 // own mistakes back as right.
@@ -114,7 +115,7 @@ inline VtuFile read_vtu(const std::string& file) {
 
   VtuFile out;
   std::string section;
-  size_t end_of_last = 0;
+  std::map<size_t, std::string> at_offset;  // the arrays by offset, to check they tile the data
   for (size_t open = xml.find('<'); open != std::string::npos; open = xml.find('<', open + 1)) {
     const std::string tag = xml.substr(open, xml.find('>', open) - open + 1);
     const std::string name = tag.substr(1, tag.find_first_of(" />") - 1);
@@ -133,12 +134,19 @@ inline VtuFile read_vtu(const std::string& file) {
     array.type = attrs.at("type");
     if (attrs.count("NumberOfComponents"))
       array.components = std::stoi(attrs.at("NumberOfComponents"));
-    if (attrs.at("format") != "appended" || std::stoull(attrs.at("offset")) != end_of_last)
-      throw std::runtime_error(attrs.at("Name") + " is not appended at offset " +
-                               std::to_string(end_of_last));
-    end_of_last = vtu_detail::inflate_array(data, end_of_last, array);
+    if (attrs.at("format") != "appended")
+      throw std::runtime_error(attrs.at("Name") + " is not appended");
+    if (!at_offset.emplace(std::stoull(attrs.at("offset")), attrs.at("Name")).second)
+      throw std::runtime_error(attrs.at("Name") + " shares its offset with another array");
     out.names.push_back(attrs.at("Name"));
     out.arrays[attrs.at("Name")] = std::move(array);
+  }
+  size_t end_of_last = 0;
+  for (const auto& [offset, name] : at_offset) {
+    if (offset != end_of_last)
+      throw std::runtime_error(name + " is not appended at offset " +
+                               std::to_string(end_of_last));
+    end_of_last = vtu_detail::inflate_array(data, offset, out.arrays[name]);
   }
   if (end_of_last != data.size())
     throw std::runtime_error(std::to_string(data.size() - end_of_last) +
