@@ -9,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "forces/overlap_correction.hpp"
 #include "io/scene_reader.hpp"
 #include "io/scene_writer.hpp"
 #include "mass/surface_integrals.hpp"
@@ -280,9 +281,12 @@ TEST(PhysicsScene, MeshCupHoldsADie) {
 }
 
 // Sixty staples (U shapes from an OFF file, three blocks each) poured into a box come to rest
-// inside it, sinking into each other at rest by less than a thousandth of their thickness. While
-// they land at up to 4.3 m/s (2.2 mm, a fifth of the thickness, per step of 5e-4 s) overlaps are
-// deeper: reported, and judged at rest.
+// inside it, sinking into each other at rest by no more than twice the overlap the correction
+// leaves alone (kOverlapSlop of a staple's size; the energy rule may leave a little more where
+// a resting body dissipates too little to pay for the lift). While they land at up to 4.3 m/s
+// (2.2 mm, a fifth of the thickness, per step of 5e-4 s) overlaps are deeper: reported, and
+// judged at rest. (Before issue 20 raised the slop from 1e-4 to 5e-4 the bound was a thousandth
+// of the thickness, four times that slop; it is now twice the slop.)
 TEST(PhysicsScene, MeshStaplePourComesToRest) {
   const Model model = load_scene("scenes/mesh_pour.json");
   State state = initial_state(model);
@@ -308,7 +312,9 @@ TEST(PhysicsScene, MeshStaplePourComesToRest) {
   report("mesh staple pour: deepest overlap at rest / thickness", deepest_at_end / 0.01);
   EXPECT_LT(highest, 0.15);  // 60 staples of 27 cm^2 spread over 256 cm^2 lie a few deep
   EXPECT_LT(fastest, 1e-3);
-  EXPECT_LT(deepest_at_end, 1e-3 * 0.01);
+  const Real slop = kOverlapSlop * body_size(model, 0);
+  report("mesh staple pour: deepest overlap at rest / the correction's slop", deepest_at_end / slop);
+  EXPECT_LT(deepest_at_end, 2 * slop);
   // Energy never rises beyond round-off: 1e-12 of M g times 1 cm, as the paper scenes' tests.
   Real mass = 0;
   for (const Body& b : model.bodies) mass += b.inertia.mass;

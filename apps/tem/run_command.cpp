@@ -44,6 +44,9 @@ void print_summary(const Model& model, const State& state, const Workspace& w, d
                t.unconverged_steps, t.scaled_steps, t.patches / steps, t.points / steps,
                t.patches > 0 ? 1e6 * wall / static_cast<double>(t.patches) : 0.0, e.kinetic,
                e.potential, e.total());
+  if (t.corrected_steps > 0)
+    std::fprintf(stderr, "  overlap correction: bodies moved apart in %lld of %lld steps\n",
+                 t.corrected_steps, t.steps);
   if (t.block_pairs > 0 && model.scene.contact.pair_cache)
     std::fprintf(stderr,
                  "  pair cache: %.1f %% of %.1f block pairs per step took last step's features\n",

@@ -6,11 +6,6 @@
 #include "simulation/step.hpp"
 
 namespace tem {
-namespace {
-
-constexpr Real kSlop = 1e-4;  // of the body's size: overlap left alone
-
-}  // namespace
 
 CorrectionReport correct_overlap(const Model& model, ContactForces& f, Real dt,
                                  Real energy_before, State& state, SolverSync* sync) {
@@ -25,7 +20,7 @@ CorrectionReport correct_overlap(const Model& model, ContactForces& f, Real dt,
     if (c.body_b >= 0) size = std::min(size, body_size(model, c.body_b));
     // The patch's depth at every point: a corner's own depth is not known (an extreme corner is
     // often an edge's crossing with the other surface, at depth 0, beside the deep node).
-    const Real excess = f.patch_depth[c.patch] - kSlop * size;
+    const Real excess = f.patch_depth[c.patch] - kOverlapSlop * size;
     if (excess > 0) {
       targets[i] = excess / dt;  // all of it in this step
       any = true;
