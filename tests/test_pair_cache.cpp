@@ -12,9 +12,12 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <random>
 #include <string>
 
+#include "collision/block_manifold.hpp"
 #include "contact/pair_cache.hpp"
+#include "geometry/primitives.hpp"
 #include "io/checkpoint.hpp"
 #include "support/simulate.hpp"
 #include "support/tem_process.hpp"
@@ -152,6 +155,52 @@ TEST(PairCache, EntriesHoldOnlyNearTheirSearch) {
   EXPECT_TRUE(features_fit(e, two_faces, two_faces));
   e.feature_a = 2;
   EXPECT_FALSE(features_fit(e, two_faces, two_faces));
+}
+
+// The separating-face cache may skip a search only where the search would find the pair apart
+// too: over random coin pairs found beyond the margin by a face, moved a little, wherever the
+// cached face still separates them, the whole search says the same (and it does so often
+// enough for the check to mean something).
+TEST(PairCache, ACachedSeparatingFaceNeverHidesAContact) {
+  const Block coin(regular_prism(6, kRadius, kThickness, Axis::z));
+  const Real margin = 0.02;
+  std::mt19937_64 rng(11);
+  std::normal_distribution<Real> normal;
+  std::uniform_real_distribution<Real> unit(0, 1);
+  auto turn = [&](Real angle) {
+    const Vec3 axis = Vec3(normal(rng), normal(rng), normal(rng)).normalized();
+    return Eigen::AngleAxis<Real>(angle, axis).matrix();
+  };
+  auto pose = [](const Mat3& r, const Vec3& x) { return BlockPose{r, r.transpose(), x}; };
+  ManifoldScratch scratch;
+  WorldBlock wa, wb;
+  int kept_apart = 0, searched_apart = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const BlockPose a = pose(turn(3.2 * unit(rng)), Vec3::Zero());
+    const Vec3 offset = (0.15 + 0.25 * unit(rng)) * Vec3(normal(rng), normal(rng), normal(rng)).normalized();
+    const BlockPose b = pose(turn(3.2 * unit(rng)), offset);
+    place_block(coin, a, wa);
+    place_block(coin, b, wb);
+    Manifold m;
+    SeparatingFace face;
+    if (block_manifold(coin, wa, coin, wb, margin, scratch, m, &face)) continue;
+    if (face.side == ManifoldFeature::none) continue;
+    ++searched_apart;
+    // A step's motion later: up to 0.05 rad and 0.01 cm.
+    const BlockPose moved = pose(turn(0.05 * unit(rng)) * b.rotation,
+                                 b.position + 0.01 * unit(rng) * Vec3(normal(rng), normal(rng), normal(rng)).normalized());
+    place_block(coin, moved, wb);
+    if (!still_separated(wa, wb, face, margin)) continue;
+    ++kept_apart;
+    EXPECT_FALSE(block_manifold(coin, wa, coin, wb, margin, scratch, m)) << "trial " << trial;
+  }
+  report("coin pairs apart by a face: searched, then still kept apart by that face",
+         static_cast<Real>(kept_apart));
+  EXPECT_GT(searched_apart, 500);
+  EXPECT_GT(kept_apart, searched_apart / 2);
+  // A face the blocks do not have separates nothing.
+  EXPECT_FALSE(still_separated(wa, wb, {ManifoldFeature::face_of_a, 99}, margin));
+  EXPECT_FALSE(still_separated(wa, wb, {ManifoldFeature::edges, 0}, margin));
 }
 
 // The cache is part of what a checkpoint keeps: a settling column resumed mid-run is the

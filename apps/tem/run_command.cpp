@@ -49,9 +49,11 @@ void print_summary(const Model& model, const State& state, const Workspace& w, d
                  t.corrected_steps, t.steps);
   if (t.block_pairs > 0 && model.scene.contact.pair_cache)
     std::fprintf(stderr,
-                 "  pair cache: %.1f %% of %.1f block pairs per step took last step's features\n",
+                 "  pair cache: of %.1f block pairs per step, %.1f %% took last step's features "
+                 "and %.1f %% were kept apart by last step's separating face\n",
+                 static_cast<double>(t.block_pairs) / steps,
                  100.0 * static_cast<double>(t.cached_pairs) / static_cast<double>(t.block_pairs),
-                 static_cast<double>(t.block_pairs) / steps);
+                 100.0 * static_cast<double>(t.apart_pairs) / static_cast<double>(t.block_pairs));
   if (model.scene.sleep)
     std::fprintf(stderr, "  sleep: %lld of %zu bodies asleep at the end\n",
                  sleeping_bodies(state), state.bodies.size());

@@ -279,17 +279,36 @@ int reduce_points(const Vec3& normal, const Vec3& along, Real equal_depth, const
   return n;
 }
 
+bool still_separated(const WorldBlock& wa, const WorldBlock& wb, const SeparatingFace& face,
+                     Real margin) {
+  const bool of_a = face.side == ManifoldFeature::face_of_a;
+  if (!of_a && face.side != ManifoldFeature::face_of_b) return false;
+  const WorldBlock& self = of_a ? wa : wb;
+  const WorldBlock& other = of_a ? wb : wa;
+  if (face.face < 0 || static_cast<size_t>(face.face) >= self.normals.size()) return false;
+  // As best_face computes one face's separation.
+  Real lowest = kInfinity;
+  for (const Vec3& p : other.nodes) lowest = std::min(lowest, self.normals[face.face].dot(p));
+  return lowest - self.offsets[face.face] > margin;
+}
+
 bool block_manifold(const Block& a, const WorldBlock& wa, const Block& b, const WorldBlock& wb,
-                    Real margin, ManifoldScratch& s, Manifold& out) {
+                    Real margin, ManifoldScratch& s, Manifold& out, SeparatingFace* separated) {
   out.count = 0;
   // Bounding spheres first: the broad phase's boxes of turned blocks pass many pairs whose
   // spheres are apart, and the axes cost a hundred times more.
   const Real reach = a.bounding_radius() + b.bounding_radius() + margin;
   if ((wa.centre - wb.centre).squaredNorm() > reach * reach) return false;
   const FaceAxis face_a = best_face(wa.normals, wa.offsets, wb.nodes, margin);
-  if (face_a.separation > margin) return false;
+  if (face_a.separation > margin) {
+    if (separated) *separated = {ManifoldFeature::face_of_a, face_a.face};
+    return false;
+  }
   const FaceAxis face_b = best_face(wb.normals, wb.offsets, wa.nodes, margin);
-  if (face_b.separation > margin) return false;
+  if (face_b.separation > margin) {
+    if (separated) *separated = {ManifoldFeature::face_of_b, face_b.face};
+    return false;
+  }
   const EdgeAxis edges =
       best_edges(wa, wb, margin, std::max(face_a.separation, face_b.separation), s.edge_list);
   if (edges.separation > margin) return false;

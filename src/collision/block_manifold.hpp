@@ -72,10 +72,23 @@ struct ManifoldScratch {
   std::vector<int> edge_list;  // B's edges that may face A
 };
 
+// A face of A or of B whose plane keeps the other block's nodes farther out than a margin.
+struct SeparatingFace {
+  ManifoldFeature side = ManifoldFeature::none;  // face_of_a, face_of_b, or none
+  int face = -1;
+};
+
 // The patch of two convex blocks whose gap is below `margin` (false, and count 0, otherwise).
+// `separated` (if given): the face axis that put them beyond the margin, where one did.
 bool block_manifold(const Block& a, const WorldBlock& world_a, const Block& b,
                     const WorldBlock& world_b, Real margin, ManifoldScratch& scratch,
-                    Manifold& out);
+                    Manifold& out, SeparatingFace* separated = nullptr);
+
+// Whether `face` still keeps the blocks farther apart than `margin`, by the very arithmetic of
+// block_manifold's face test: where it does, block_manifold returns false too, so a caller may
+// skip it (a separating-axis cache; contact/pair_cache.hpp). False for a face the blocks lack.
+bool still_separated(const WorldBlock& world_a, const WorldBlock& world_b,
+                     const SeparatingFace& face, Real margin);
 bool block_manifold(const Block& a, const BlockPose& pose_a, const Block& b,
                     const BlockPose& pose_b, Real margin, ManifoldScratch& scratch,
                     Manifold& out);

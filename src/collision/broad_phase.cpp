@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "support/parallel.hpp"
+
 namespace tem {
 namespace {
 
@@ -56,7 +58,8 @@ void BroadPhase::update(const Model& model, const State& state, const std::vecto
   const size_t n = proxies_.size();
   poses_.resize(n);
   bounds_.resize(n);
-  for (size_t i = 0; i < n; ++i) {
+  // Each block's pose and bounds on its own: shared among threads, the same at any count.
+  parallel_for(static_cast<long long>(n), 256, [&](long long i) {
     const BlockProxy& p = proxies_[i];
     const BlockInstance& instance = model.bodies[p.body].blocks[p.instance];
     poses_[i] = block_pose(instance, state.bodies[p.body]);
@@ -65,7 +68,7 @@ void BroadPhase::update(const Model& model, const State& state, const std::vecto
       bounds_[i].min.array() -= reach[p.body];
       bounds_[i].max.array() += reach[p.body];
     }
-  }
+  });
   find_block_pairs(model);
   find_wall_pairs(model, reach, state.time);
   if (subset) keep_owned_pairs(*subset);

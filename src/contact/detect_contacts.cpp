@@ -56,7 +56,10 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
   const long long n_all = n_block + static_cast<long long>(wall_pairs.size());
   const long long runs = (n_all + kRun - 1) / kRun;
   w.threads.resize(static_cast<size_t>(max_threads()));
-  for (PairScratch& s : w.threads) s.pairs_tested = s.pairs_cached = 0;
+  for (PairScratch& s : w.threads) {
+    s.pairs_tested = s.pairs_cached = s.pairs_apart = 0;
+    s.separations.clear();
+  }
   const bool ahead = !w.reach.empty();
   if (ahead) {
     // Each block's world nodes, planes and edges once, for all the pairs it is in; blocks in
@@ -94,7 +97,19 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
                          !near_search(*cached, rotation, offset,
                                       std::min(a.bounding_radius(), b.bounding_radius()))))
             cached = nullptr;
+          ++s.pairs_tested;
+          // Last step's separating face, where it still keeps the pair beyond its margin.
+          if (!cached && w.use_features) {
+            const CachedSeparation* apart =
+                cached_separation(w.separations, body_a, block_a, body_b, block_b);
+            if (apart && still_separated(w.world[pair.a], w.world[pair.b], apart->face, margin)) {
+              ++s.pairs_apart;
+              s.separations.push_back(*apart);
+              continue;
+            }
+          }
           Manifold m;
+          SeparatingFace separated;
           bool found, searched = true;
           if (cached) {
             Manifold features;
@@ -104,10 +119,12 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
             found = rebuild_manifold(a, w.world[pair.a], b, w.world[pair.b], margin, features,
                                      s.manifold, m, &searched);
           } else {
-            found = block_manifold(a, w.world[pair.a], b, w.world[pair.b], margin, s.manifold, m);
+            found = block_manifold(a, w.world[pair.a], b, w.world[pair.b], margin, s.manifold, m,
+                                   &separated);
           }
-          ++s.pairs_tested;
           if (cached && !searched) ++s.pairs_cached;
+          if (!found && w.use_features && separated.side != ManifoldFeature::none)
+            s.separations.push_back({body_a, block_a, body_b, block_b, separated});
           if (found) {
             out.push_back(manifold_patch(m));
             ContactPatch& p = out.back();
@@ -185,11 +202,16 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
   // edge-on-edge place with its own normal.)
   if (!ahead) merge_touching_patches(patches);
   if (ahead && w.use_features) keep_features(patches, w.features);
-  w.pairs_tested = w.pairs_cached = 0;
-  for (const PairScratch& s : w.threads) {
+  w.pairs_tested = w.pairs_cached = w.pairs_apart = 0;
+  if (ahead && w.use_features) w.separations.clear();
+  for (PairScratch& s : w.threads) {
     w.pairs_tested += s.pairs_tested;
     w.pairs_cached += s.pairs_cached;
+    w.pairs_apart += s.pairs_apart;
+    if (ahead && w.use_features)
+      w.separations.insert(w.separations.end(), s.separations.begin(), s.separations.end());
   }
+  if (ahead && w.use_features) sort_separations(w.separations);
 }
 
 }  // namespace tem

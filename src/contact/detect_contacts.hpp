@@ -22,7 +22,8 @@ struct PairScratch {
   PairFeatures pair;
   WallFeatures wall;
   PatchScratch patch;
-  long long pairs_tested = 0, pairs_cached = 0;  // block pairs of contact before overlap
+  long long pairs_tested = 0, pairs_cached = 0, pairs_apart = 0;  // (ContactWorkspace's)
+  std::vector<CachedSeparation> separations;  // this step's pairs a face kept apart
   ManifoldScratch manifold;
 };
 
@@ -39,10 +40,12 @@ struct ContactWorkspace {
   // The pair cache (pair_cache.hpp): the features of the last find_patches' block pairs, and
   // whether find_patches takes them and keeps this step's (set per step by its caller).
   std::vector<CachedFeatures> features;
+  std::vector<CachedSeparation> separations;  // last step's pairs a face kept apart
   bool use_features = false;
-  // Of the last find_patches: block pairs tested with contact before overlap, and how many of
-  // them took cached features that still held (no search).
-  long long pairs_tested = 0, pairs_cached = 0;
+  // Of the last find_patches: block pairs tested with contact before overlap, how many of them
+  // took cached features that still held, and how many a cached face still kept apart (neither
+  // searched).
+  long long pairs_tested = 0, pairs_cached = 0, pairs_apart = 0;
   std::vector<int> order;                  // sorting the patches by body pair
   std::vector<ContactPatch> sorted;        // the patches in that order, swapped with the result
 };

@@ -6,8 +6,23 @@
 namespace tem {
 namespace {
 
-std::tuple<int, int, int, int> key(const CachedFeatures& e) {
+template <class Entry>
+std::tuple<int, int, int, int> key(const Entry& e) {
   return {e.body_a, e.block_a, e.body_b, e.block_b};
+}
+
+template <class Entry>
+const Entry* find_entry(const std::vector<Entry>& cache, int body_a, int block_a, int body_b,
+                        int block_b) {
+  Entry probe;
+  probe.body_a = body_a;
+  probe.block_a = block_a;
+  probe.body_b = body_b;
+  probe.block_b = block_b;
+  const auto it = std::lower_bound(cache.begin(), cache.end(), probe,
+                                   [](const Entry& x, const Entry& y) { return key(x) < key(y); });
+  if (it == cache.end() || key(*it) != key(probe)) return nullptr;
+  return &*it;
 }
 
 }  // namespace
@@ -19,16 +34,18 @@ void relative_pose(const BlockPose& a, const BlockPose& b, Mat3& rotation, Vec3&
 
 const CachedFeatures* cached_features(const std::vector<CachedFeatures>& cache, int body_a,
                                       int block_a, int body_b, int block_b) {
-  CachedFeatures probe;
-  probe.body_a = body_a;
-  probe.block_a = block_a;
-  probe.body_b = body_b;
-  probe.block_b = block_b;
-  const auto it = std::lower_bound(
-      cache.begin(), cache.end(), probe,
-      [](const CachedFeatures& x, const CachedFeatures& y) { return key(x) < key(y); });
-  if (it == cache.end() || key(*it) != key(probe)) return nullptr;
-  return &*it;
+  return find_entry(cache, body_a, block_a, body_b, block_b);
+}
+
+const CachedSeparation* cached_separation(const std::vector<CachedSeparation>& cache, int body_a,
+                                          int block_a, int body_b, int block_b) {
+  return find_entry(cache, body_a, block_a, body_b, block_b);
+}
+
+void sort_separations(std::vector<CachedSeparation>& cache) {
+  std::sort(cache.begin(), cache.end(), [](const CachedSeparation& x, const CachedSeparation& y) {
+    return key(x) < key(y);
+  });
 }
 
 bool features_fit(const CachedFeatures& entry, const WorldBlock& a, const WorldBlock& b) {

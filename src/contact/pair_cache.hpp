@@ -35,6 +35,21 @@ struct CachedFeatures {
   Vec3 offset = Vec3::Zero();
 };
 
+// A block pair that a face axis kept beyond its margin last step. Not in checkpoints: a pair
+// whose cached face still separates it is one the whole search would also find apart (the same
+// arithmetic, block_manifold.hpp still_separated), so the cache changes the cost, never a bit.
+// Entries are not renumbered when bodies leave: an entry that lands on another pair is checked
+// like any other and only saves a search where that face separates the pair.
+struct CachedSeparation {
+  int body_a = -1, block_a = -1, body_b = -1, block_b = -1;
+  SeparatingFace face;
+};
+
+// The entry of the block pair, or nullptr; `cache` sorted by sort_separations.
+const CachedSeparation* cached_separation(const std::vector<CachedSeparation>& cache, int body_a,
+                                          int block_a, int body_b, int block_b);
+void sort_separations(std::vector<CachedSeparation>& cache);
+
 // Limits on the relative motion since the search: 0.02 rad of turn, 2% of the smaller block's
 // bounding radius of slide. A turn of the reference face by more could let another face or edge
 // pair become the least-separating axis; within them the kept features still support the

@@ -131,11 +131,15 @@ void find_contact_forces(const Model& model, const State& state, Workspace& w) {
   // has barely moved takes last step's features (pair_cache.hpp; one process only: the ranks'
   // checkpoints do not hold them).
   w.contact.use_features = scene.contact.pair_cache && w.subset.empty();
-  if (!w.contact.use_features) w.contact.features.clear();
+  if (!w.contact.use_features) {
+    w.contact.features.clear();
+    w.contact.separations.clear();
+  }
   find_patches(model, patch_variant(scene), w.contact, w.patches);
   w.times.narrow_phase += seconds_since(clock);
   w.times.block_pairs += w.contact.pairs_tested;
   w.times.cached_pairs += w.contact.pairs_cached;
+  w.times.apart_pairs += w.contact.pairs_apart;
 
   // 4. Forces: the contact impulses of the scene's force model, as forces held over the step
   // (with sub-steps, over its first sub-step).

@@ -32,7 +32,7 @@ struct StageTimes {
   long long points = 0;
   // Block pairs tested with contact before overlap, and those that took last step's features
   // (contact.pair_cache), summed over the steps.
-  long long block_pairs = 0, cached_pairs = 0;
+  long long block_pairs = 0, cached_pairs = 0, apart_pairs = 0;
 };
 
 struct Workspace {
