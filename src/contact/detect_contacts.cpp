@@ -25,6 +25,69 @@ ContactPatch manifold_patch(const Manifold& m) {
   return p;
 }
 
+namespace {
+
+// A block pair with contact before overlap: its patch where the blocks are within their margin
+// (false otherwise), from last step's features where the pair has barely moved since they were
+// searched and they still hold, skipped where last step's separating face still keeps it apart,
+// else from the whole search (pair_cache.hpp); what it learns goes into the thread's scratch.
+bool patch_ahead(const ContactWorkspace& w, const BlockPair& pair, const Block& a, const Block& b,
+                 PairScratch& s, ContactPatch& p) {
+  const std::vector<BlockProxy>& proxies = w.broad_phase.proxies();
+  const std::vector<BlockPose>& poses = w.broad_phase.poses();
+  const WorldBlock &world_a = w.world[pair.a], &world_b = w.world[pair.b];
+  const int body_a = proxies[pair.a].body, body_b = proxies[pair.b].body;
+  const int block_a = proxies[pair.a].instance, block_b = proxies[pair.b].instance;
+  const Real margin = w.reach[body_a] + w.reach[body_b];
+  ++s.pairs_tested;
+  Mat3 rotation = Mat3::Identity();
+  Vec3 offset = Vec3::Zero();
+  const CachedFeatures* cached = nullptr;
+  if (w.use_features) {
+    relative_pose(poses[pair.a], poses[pair.b], rotation, offset);
+    cached = cached_features(w.features, body_a, block_a, body_b, block_b);
+    if (cached && (!features_fit(*cached, world_a, world_b) ||
+                   !near_search(*cached, rotation, offset,
+                                std::min(a.bounding_radius(), b.bounding_radius()))))
+      cached = nullptr;
+    const CachedSeparation* apart =
+        cached ? nullptr : cached_separation(w.separations, body_a, block_a, body_b, block_b);
+    if (apart && still_separated(world_a, world_b, apart->face, margin)) {
+      ++s.pairs_apart;
+      s.separations.push_back(*apart);
+      return false;
+    }
+  }
+  Manifold m;
+  SeparatingFace separated;
+  bool found, searched = true;
+  if (cached) {
+    Manifold features;
+    features.feature = cached->feature;
+    features.feature_a = cached->feature_a;
+    features.feature_b = cached->feature_b;
+    found = rebuild_manifold(a, world_a, b, world_b, margin, features, s.manifold, m, &searched);
+    if (!searched) ++s.pairs_cached;
+  } else {
+    found = block_manifold(a, world_a, b, world_b, margin, s.manifold, m, &separated);
+  }
+  if (!found) {
+    if (w.use_features && separated.side != ManifoldFeature::none)
+      s.separations.push_back({body_a, block_a, body_b, block_b, separated});
+    return false;
+  }
+  p = manifold_patch(m);
+  p.body_a = body_a;
+  p.body_b = body_b;
+  p.block_a = block_a;
+  p.block_b = block_b;
+  p.searched_rotation = searched ? rotation : cached->rotation;
+  p.searched_offset = searched ? offset : cached->offset;
+  return true;
+}
+
+}  // namespace
+
 PatchVariant patch_variant(const SceneDef& scene) {
   return scene.contact.normals == PatchNormals::paper ? NormalVariant::paper
                                                      : NormalVariant::default_;
@@ -82,59 +145,8 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
         const BlockPair& pair = block_pairs[static_cast<size_t>(item)];
         const Block &a = block_of(pair.a), &b = block_of(pair.b);
         if (ahead) {
-          const int body_a = proxies[pair.a].body, body_b = proxies[pair.b].body;
-          const int block_a = proxies[pair.a].instance, block_b = proxies[pair.b].instance;
-          const Real margin = w.reach[body_a] + w.reach[body_b];
-          Mat3 rotation;
-          Vec3 offset;
-          relative_pose(poses[pair.a], poses[pair.b], rotation, offset);
-          // Last step's features where the pair has barely moved since they were searched.
-          const CachedFeatures* cached =
-              w.use_features
-                  ? cached_features(w.features, body_a, block_a, body_b, block_b)
-                  : nullptr;
-          if (cached && (!features_fit(*cached, w.world[pair.a], w.world[pair.b]) ||
-                         !near_search(*cached, rotation, offset,
-                                      std::min(a.bounding_radius(), b.bounding_radius()))))
-            cached = nullptr;
-          ++s.pairs_tested;
-          // Last step's separating face, where it still keeps the pair beyond its margin.
-          if (!cached && w.use_features) {
-            const CachedSeparation* apart =
-                cached_separation(w.separations, body_a, block_a, body_b, block_b);
-            if (apart && still_separated(w.world[pair.a], w.world[pair.b], apart->face, margin)) {
-              ++s.pairs_apart;
-              s.separations.push_back(*apart);
-              continue;
-            }
-          }
-          Manifold m;
-          SeparatingFace separated;
-          bool found, searched = true;
-          if (cached) {
-            Manifold features;
-            features.feature = cached->feature;
-            features.feature_a = cached->feature_a;
-            features.feature_b = cached->feature_b;
-            found = rebuild_manifold(a, w.world[pair.a], b, w.world[pair.b], margin, features,
-                                     s.manifold, m, &searched);
-          } else {
-            found = block_manifold(a, w.world[pair.a], b, w.world[pair.b], margin, s.manifold, m,
-                                   &separated);
-          }
-          if (cached && !searched) ++s.pairs_cached;
-          if (!found && w.use_features && separated.side != ManifoldFeature::none)
-            s.separations.push_back({body_a, block_a, body_b, block_b, separated});
-          if (found) {
-            out.push_back(manifold_patch(m));
-            ContactPatch& p = out.back();
-            p.body_a = body_a;
-            p.body_b = body_b;
-            p.block_a = block_a;
-            p.block_b = block_b;
-            p.searched_rotation = searched ? rotation : cached->rotation;
-            p.searched_offset = searched ? offset : cached->offset;
-          }
+          ContactPatch p;
+          if (patch_ahead(w, pair, a, b, s, p)) out.push_back(std::move(p));
           continue;
         }
         if (!block_pair_features(a, poses[pair.a], b, poses[pair.b], s.narrow, s.pair)) continue;
