@@ -313,7 +313,8 @@ TEST(PhysicsScene, MeshStaplePourComesToRest) {
   EXPECT_LT(highest, 0.15);  // 60 staples of 27 cm^2 spread over 256 cm^2 lie a few deep
   EXPECT_LT(fastest, 1e-3);
   const Real slop = kOverlapSlop * body_size(model, 0);
-  report("mesh staple pour: deepest overlap at rest / the correction's slop", deepest_at_end / slop);
+  report("mesh staple pour: deepest overlap at rest / the correction's slop",
+         deepest_at_end / slop);
   EXPECT_LT(deepest_at_end, 2 * slop);
   // Energy never rises beyond round-off: 1e-12 of M g times 1 cm, as the paper scenes' tests.
   Real mass = 0;

@@ -177,7 +177,8 @@ TEST(PairCache, ACachedSeparatingFaceNeverHidesAContact) {
   int kept_apart = 0, searched_apart = 0;
   for (int trial = 0; trial < 4000; ++trial) {
     const BlockPose a = pose(turn(3.2 * unit(rng)), Vec3::Zero());
-    const Vec3 offset = (0.15 + 0.25 * unit(rng)) * Vec3(normal(rng), normal(rng), normal(rng)).normalized();
+    const Vec3 direction = Vec3(normal(rng), normal(rng), normal(rng)).normalized();
+    const Vec3 offset = (0.15 + 0.25 * unit(rng)) * direction;
     const BlockPose b = pose(turn(3.2 * unit(rng)), offset);
     place_block(coin, a, wa);
     place_block(coin, b, wb);
@@ -187,8 +188,9 @@ TEST(PairCache, ACachedSeparatingFaceNeverHidesAContact) {
     if (face.side == ManifoldFeature::none) continue;
     ++searched_apart;
     // A step's motion later: up to 0.05 rad and 0.01 cm.
-    const BlockPose moved = pose(turn(0.05 * unit(rng)) * b.rotation,
-                                 b.position + 0.01 * unit(rng) * Vec3(normal(rng), normal(rng), normal(rng)).normalized());
+    const Vec3 slide = Vec3(normal(rng), normal(rng), normal(rng)).normalized();
+    const BlockPose moved =
+        pose(turn(0.05 * unit(rng)) * b.rotation, b.position + 0.01 * unit(rng) * slide);
     place_block(coin, moved, wb);
     if (!still_separated(wa, wb, face, margin)) continue;
     ++kept_apart;

@@ -14,14 +14,21 @@ struct FaceAxis {
   int face = -1;
 };
 
+// How far the nodes lie outside the plane normal . x = offset: the nearest one's distance.
+// Every face test (best_face, still_separated, rebuild_manifold's check) computes it so, in the
+// same arithmetic: a cached face and the search agree to the bit.
+Real face_separation(const Vec3& normal, Real offset, const std::vector<Vec3>& nodes) {
+  Real lowest = kInfinity;
+  for (const Vec3& p : nodes) lowest = std::min(lowest, normal.dot(p));
+  return lowest - offset;
+}
+
 // The face of `self` whose plane the other block's nodes are farthest outside of.
 FaceAxis best_face(const std::vector<Vec3>& normals, const std::vector<Real>& offsets,
                    const std::vector<Vec3>& other_nodes, Real margin) {
   FaceAxis best;
   for (size_t f = 0; f < normals.size(); ++f) {
-    Real lowest = kInfinity;
-    for (const Vec3& p : other_nodes) lowest = std::min(lowest, normals[f].dot(p));
-    const Real s = lowest - offsets[f];
+    const Real s = face_separation(normals[f], offsets[f], other_nodes);
     if (s > best.separation) {
       best = {s, static_cast<int>(f)};
       if (s > margin) return best;  // separated beyond the margin: nothing more to learn
@@ -286,10 +293,7 @@ bool still_separated(const WorldBlock& wa, const WorldBlock& wb, const Separatin
   const WorldBlock& self = of_a ? wa : wb;
   const WorldBlock& other = of_a ? wb : wa;
   if (face.face < 0 || static_cast<size_t>(face.face) >= self.normals.size()) return false;
-  // As best_face computes one face's separation.
-  Real lowest = kInfinity;
-  for (const Vec3& p : other.nodes) lowest = std::min(lowest, self.normals[face.face].dot(p));
-  return lowest - self.offsets[face.face] > margin;
+  return face_separation(self.normals[face.face], self.offsets[face.face], other.nodes) > margin;
 }
 
 bool block_manifold(const Block& a, const WorldBlock& wa, const Block& b, const WorldBlock& wb,
@@ -392,9 +396,8 @@ bool rebuild_manifold(const Block& a, const WorldBlock& wa, const Block& b, cons
   const int face = of_b ? detected.feature_b : detected.feature_a;
   const WorldBlock& reference = of_b ? wb : wa;
   const WorldBlock& other = of_b ? wa : wb;
-  Real lowest = kInfinity;
-  for (const Vec3& p : other.nodes)
-    lowest = std::min(lowest, reference.normals[face].dot(p) - reference.offsets[face]);
+  const Real lowest =
+      face_separation(reference.normals[face], reference.offsets[face], other.nodes);
   if (lowest > margin) return false;
   if (!clip_reference_face(a, wa, b, wb, margin, s, out)) out.count = 0;
   Real shallowest_kept = kInfinity;

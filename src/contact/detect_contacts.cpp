@@ -213,17 +213,21 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
   // (Patches of contact before overlap stay one per block pair: each is one face-on-face or
   // edge-on-edge place with its own normal.)
   if (!ahead) merge_touching_patches(patches);
-  if (ahead && w.use_features) keep_features(patches, w.features);
+  // The pair cache for the next step, and the counts of how this one was answered.
+  const bool cache = ahead && w.use_features;
+  if (cache) {
+    keep_features(patches, w.features);
+    w.separations.clear();
+  }
   w.pairs_tested = w.pairs_cached = w.pairs_apart = 0;
-  if (ahead && w.use_features) w.separations.clear();
-  for (PairScratch& s : w.threads) {
+  for (const PairScratch& s : w.threads) {
     w.pairs_tested += s.pairs_tested;
     w.pairs_cached += s.pairs_cached;
     w.pairs_apart += s.pairs_apart;
-    if (ahead && w.use_features)
+    if (cache)
       w.separations.insert(w.separations.end(), s.separations.begin(), s.separations.end());
   }
-  if (ahead && w.use_features) sort_separations(w.separations);
+  if (cache) sort_separations(w.separations);
 }
 
 }  // namespace tem

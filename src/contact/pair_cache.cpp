@@ -25,6 +25,12 @@ const Entry* find_entry(const std::vector<Entry>& cache, int body_a, int block_a
   return &*it;
 }
 
+template <class Entry>
+void sort_by_pair(std::vector<Entry>& cache) {
+  std::sort(cache.begin(), cache.end(),
+            [](const Entry& x, const Entry& y) { return key(x) < key(y); });
+}
+
 }  // namespace
 
 void relative_pose(const BlockPose& a, const BlockPose& b, Mat3& rotation, Vec3& offset) {
@@ -42,11 +48,7 @@ const CachedSeparation* cached_separation(const std::vector<CachedSeparation>& c
   return find_entry(cache, body_a, block_a, body_b, block_b);
 }
 
-void sort_separations(std::vector<CachedSeparation>& cache) {
-  std::sort(cache.begin(), cache.end(), [](const CachedSeparation& x, const CachedSeparation& y) {
-    return key(x) < key(y);
-  });
-}
+void sort_separations(std::vector<CachedSeparation>& cache) { sort_by_pair(cache); }
 
 bool features_fit(const CachedFeatures& entry, const WorldBlock& a, const WorldBlock& b) {
   const auto fits = [](int index, size_t size) {
@@ -93,8 +95,7 @@ void keep_features(const std::vector<ContactPatch>& patches, std::vector<CachedF
     e.offset = p.searched_offset;
     cache.push_back(e);
   }
-  std::sort(cache.begin(), cache.end(),
-            [](const CachedFeatures& x, const CachedFeatures& y) { return key(x) < key(y); });
+  sort_by_pair(cache);
 }
 
 }  // namespace tem

@@ -3,11 +3,12 @@
 // The velocity-level contact of SEMM stops bodies approaching but leaves the overlap that one
 // step of approach made (impact speed x dt). This pushes overlapping points apart by moving the
 // bodies (positions and attitudes, not velocities: no bounce) by the overlap beyond a slop of
-// 5e-4 of the body's size (kOverlapSlop), solved like the contact impulses but on pseudo velocities (a "split
-// impulse"), in one step: a body that has just landed dissipates then, and not afterwards. Lifting a body raises its potential energy, so the move is
-// scaled down to what the step's contacts dissipated: the total energy never rises. A body
-// resting still (nothing dissipated) keeps its overlap; an impact, which dissipates far more
-// than the lift costs, is corrected in the step it happens.
+// 5e-4 of the body's size (kOverlapSlop), solved like the contact impulses but on pseudo
+// velocities (a "split impulse"), in one step: a body that has just landed dissipates then, and
+// not afterwards. Lifting a body raises its potential energy, so the move is scaled down to what
+// the step's contacts dissipated: the total energy never rises. A body resting still (nothing
+// dissipated) keeps its overlap; an impact, which dissipates far more than the lift costs, is
+// corrected in the step it happens.
 #pragma once
 
 #include "forces/contact_forces.hpp"

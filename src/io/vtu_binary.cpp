@@ -93,11 +93,12 @@ std::string VtuBinary::finish() {
   // The arrays' bytes go in the reverse of their XML order (vtu_binary.hpp says why): the last
   // array declared at offset 0, the first one last.
   const size_t n = chunk_start_.size();
+  auto chunk_end = [&](size_t k) { return k + 1 < n ? chunk_start_[k + 1] : data_.size(); };
   std::vector<size_t> offset(n);
   size_t next = 0;
   for (size_t k = n; k-- > 0;) {
     offset[k] = next;
-    next += (k + 1 < n ? chunk_start_[k + 1] : data_.size()) - chunk_start_[k];
+    next += chunk_end(k) - chunk_start_[k];
   }
   std::string out;
   out.reserve(xml_.size() + data_.size() + 20 * n + 128);
@@ -111,10 +112,7 @@ std::string VtuBinary::finish() {
   // The raw data starts after the underscore and ends before the newline (VTK's layout; meshio
   // relies on both).
   out += "</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
-  for (size_t k = n; k-- > 0;) {
-    const size_t end = k + 1 < n ? chunk_start_[k + 1] : data_.size();
-    out.append(data_, chunk_start_[k], end - chunk_start_[k]);
-  }
+  for (size_t k = n; k-- > 0;) out.append(data_, chunk_start_[k], chunk_end(k) - chunk_start_[k]);
   out += "\n</AppendedData>\n</VTKFile>\n";
   xml_.clear();
   data_.clear();

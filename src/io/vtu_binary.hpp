@@ -16,7 +16,8 @@
 // offset, first match in XML order; laid out in XML order, an array already rewritten could
 // carry the very offset of one still to come and be read in its place (a contacts frame of 52
 // points failed so: tests/paraview/check_paraview.py). Laid out in reverse, the array looked
-// up always comes before every rewritten one. ParaView reads either layout. The whole file is built in memory, so a frame is
+// up always comes before every rewritten one. ParaView reads either layout. The whole file is
+// built in memory, so a frame is
 // written with a single write.
 #pragma once
 

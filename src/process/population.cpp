@@ -94,7 +94,8 @@ void renumber_memory(const std::vector<int>& map, const PopulationLinks& links) 
     if (parallel) forces->resize(next);
   }
   if (links.features) {
-    std::erase_if(*links.features, [&](const CachedFeatures& e) { return gone(e.body_a, e.body_b); });
+    std::erase_if(*links.features,
+                  [&](const CachedFeatures& e) { return gone(e.body_a, e.body_b); });
     for (CachedFeatures& e : *links.features) renumber(e.body_a, e.body_b);
   }
   if (!links.forces) return;
