@@ -2,7 +2,10 @@
 // overlapping convex blocks, worked out by hand.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iostream>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -13,6 +16,7 @@ namespace tem {
 namespace {
 
 constexpr Real kTight = 1e-12;
+constexpr Real kInf = std::numeric_limits<Real>::infinity();
 
 BlockPose pose_of(const Mat3& rotation, const Vec3& position) {
   return {rotation, rotation.transpose(), position};
@@ -180,6 +184,148 @@ TEST(BlockManifold, ReductionOfAFlatFaceDoesNotFlicker) {
     reduce_points(Vec3::UnitZ(), edge, 1e-4, points.data(), tilted.data(), kCorners, kept);
     EXPECT_EQ(kept[0], deep);
   }
+}
+
+// The gap of two placed blocks by brute force, to check the search against: where no axis of
+// all face normals and all cross products of edge directions separates them they overlap (minus
+// the least overlap along those axes); else the least distance of a node of one to a triangle
+// of the other and of an edge of one to an edge of the other, which is the exact distance.
+Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  // Ericson, Real-Time Collision Detection, 5.1.5: by the Voronoi regions of the corners,
+  // edges and face.
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const Real d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec3 bp = p - b;
+  const Real d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const Real vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
+  const Vec3 cp = p - c;
+  const Real d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const Real vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
+  const Real va = d3 * d6 - d5 * d4;
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  const Real denominator = 1 / (va + vb + vc);
+  return a + ab * (vb * denominator) + ac * (vc * denominator);
+}
+
+Real segment_distance(const Vec3& p1, const Vec3& q1, const Vec3& p2, const Vec3& q2) {
+  // Ericson 5.1.9, for segments of non-zero length.
+  const Vec3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const Real a = d1.dot(d1), e = d2.dot(d2), f = d2.dot(r), c = d1.dot(r), b = d1.dot(d2);
+  const Real denominator = a * e - b * b;
+  Real s = denominator > 0 ? std::clamp((b * f - c * e) / denominator, Real(0), Real(1)) : 0;
+  Real t = (b * s + f) / e;
+  if (t < 0) {
+    t = 0;
+    s = std::clamp(-c / a, Real(0), Real(1));
+  } else if (t > 1) {
+    t = 1;
+    s = std::clamp((b - c) / a, Real(0), Real(1));
+  }
+  return ((p1 + s * d1) - (p2 + t * d2)).norm();
+}
+
+Real brute_gap(const Block& a, const BlockPose& pa, const Block& b, const BlockPose& pb) {
+  std::vector<Vec3> na, nb;
+  for (const Vec3& p : a.nodes()) na.push_back(pa.to_world(p));
+  for (const Vec3& p : b.nodes()) nb.push_back(pb.to_world(p));
+  std::vector<Vec3> axes;
+  for (const Polygon& f : a.polygons()) axes.push_back(pa.rotation * f.normal);
+  for (const Polygon& f : b.polygons()) axes.push_back(pb.rotation * f.normal);
+  for (const Edge& ea : a.edges())
+    for (const Edge& eb : b.edges()) {
+      const Vec3 axis = (na[ea.nodes[1]] - na[ea.nodes[0]]).cross(nb[eb.nodes[1]] - nb[eb.nodes[0]]);
+      if (axis.norm() > 1e-9) axes.push_back(axis.normalized());
+    }
+  Real separation = -std::numeric_limits<Real>::infinity();
+  for (const Vec3& axis : axes) {
+    Real lo_a = kInf, hi_a = -kInf, lo_b = kInf, hi_b = -kInf;
+    for (const Vec3& p : na) lo_a = std::min(lo_a, axis.dot(p)), hi_a = std::max(hi_a, axis.dot(p));
+    for (const Vec3& p : nb) lo_b = std::min(lo_b, axis.dot(p)), hi_b = std::max(hi_b, axis.dot(p));
+    separation = std::max({separation, lo_b - hi_a, lo_a - hi_b});
+  }
+  if (separation <= 0) return separation;
+  Real distance = kInf;
+  auto nodes_to_triangles = [&](const std::vector<Vec3>& nodes, const Block& other,
+                                const std::vector<Vec3>& other_nodes) {
+    for (const Vec3& p : nodes)
+      for (const Triangle& t : other.triangles())
+        distance = std::min(distance, (p - closest_on_triangle(p, other_nodes[t.nodes[0]],
+                                                               other_nodes[t.nodes[1]],
+                                                               other_nodes[t.nodes[2]])).norm());
+  };
+  nodes_to_triangles(na, b, nb);
+  nodes_to_triangles(nb, a, na);
+  for (const Edge& ea : a.edges())
+    for (const Edge& eb : b.edges())
+      distance = std::min(distance, segment_distance(na[ea.nodes[0]], na[ea.nodes[1]],
+                                                     nb[eb.nodes[0]], nb[eb.nodes[1]]));
+  return distance;
+}
+
+// Two coins (and a coin and a brick) at random attitudes, one moved towards the other until
+// they are within a margin of touching or slightly overlap: the search must find every such
+// pair. Before issue 20's fix a face preferred over a nearly equal edge axis whose clip came out
+// empty (edge across edge, corner past the rim) dropped the pair as apart: in the 1,000-coin
+// pour at dt 5e-4 with four sub-steps, 24 pairs in 0.2 s sank up to 19 % of a coin into each
+// other; and a face's clipped corners could claim a gap larger than the true one (a corner just
+// past the rim). With the code before the fix this test finds 7 of 909 pairs missed and 44
+// patches whose least gap exceeds the true gap, by up to 0.0028 (2.8 % of a coin's thickness).
+TEST(BlockManifold, NoPairWithinTheMarginIsMissed) {
+  const Block coin(regular_prism(6, 0.15, 0.1, Axis::z));
+  const Block brick(box(Vec3(0.3, 0.12, 0.08)));
+  std::mt19937_64 random(20);
+  std::uniform_real_distribution<Real> unit(-1, 1);
+  auto random_rotation = [&] {
+    Eigen::Quaternion<Real> q(unit(random), unit(random), unit(random), unit(random));
+    return Mat3(q.normalized().toRotationMatrix());
+  };
+  const Real margin = 0.02;
+  int within = 0, overlapping = 0, missed = 0;
+  ManifoldScratch scratch;
+  for (int trial = 0; trial < 1000; ++trial) {
+    const Block& other = trial % 4 == 3 ? brick : coin;
+    const BlockPose pa = pose_of(random_rotation(), Vec3::Zero());
+    const Mat3 rb = random_rotation();
+    const Vec3 direction = Vec3(unit(random), unit(random), unit(random)).normalized();
+    // Where the gap is the margin (bisection: the gap falls along the way in, convex bodies),
+    // then anywhere from there to a little overlap.
+    auto gap_at = [&](Real distance) {
+      return brute_gap(coin, pa, other, pose_of(rb, distance * direction));
+    };
+    Real near = 0, far = 0.5;
+    for (int halving = 0; halving < 16; ++halving) {
+      const Real middle = (near + far) / 2;
+      (gap_at(middle) > margin ? far : near) = middle;
+    }
+    const Real extra = 0.13 * (trial % 11) * margin;
+    const BlockPose pb = pose_of(rb, (far - extra) * direction);
+    const Real gap = brute_gap(coin, pa, other, pb);
+    if (gap > margin) continue;
+    ++within;
+    if (gap < 0) ++overlapping;
+    Manifold m;
+    if (!block_manifold(coin, pa, other, pb, margin, scratch, m)) {
+      ++missed;
+      ADD_FAILURE() << "trial " << trial << ": gap " << gap << " within the margin, not found";
+      continue;
+    }
+    Real least = kInf;
+    for (int k = 0; k < m.count; ++k) least = std::min(least, m.gap[k]);
+    // The patch's least gap is never more than the true gap (a contact that thinks itself
+    // farther than it is closes into overlap) beyond what the search takes for round-off
+    // (1e-6 of the smaller block's radius, so that the pair cache's rebuild agrees with it).
+    EXPECT_LE(least, gap + 1e-6 * 0.15) << "trial " << trial;
+  }
+  EXPECT_GT(within, 750);
+  EXPECT_GT(overlapping, 100);
+  EXPECT_EQ(missed, 0);
+  std::cout << "[ measured ] " << within << " pairs within the margin, " << overlapping
+            << " of them overlapping\n";
 }
 
 }  // namespace

@@ -110,6 +110,10 @@ std::pair<Vec3, Vec3> closest_points(const Vec3& p1, const Vec3& d1, const Vec3&
 // count as equally deep (reduce_points).
 constexpr Real kEqualDepth = 1e-4;
 
+// Gaps that differ by less than this fraction of the smaller block's bounding radius differ by
+// round-off: a cached feature still holds (rebuild_manifold), a clipped corner's gap stands.
+constexpr Real kSameGap = 1e-6;
+
 // The first edge of a placed block's polygon, in the world: a direction that turns with it.
 Vec3 face_edge(const Block& block, const WorldBlock& world, int face) {
   const std::vector<int>& nodes = block.polygons()[face].nodes;
@@ -171,6 +175,21 @@ void clip_faces(const Block& ref, const std::vector<Vec3>& ref_nodes, const Vec3
     points.push_back(p - 0.5 * gap * ref_normal);
     gaps.push_back(gap);
   }
+}
+
+// The one point of an edge-pair manifold: midway between the closest points of A's edge i and
+// B's edge j, with the gap `separation` along `axis` (out of A).
+void edge_manifold(const WorldBlock& wa, const WorldBlock& wb, int i, int j, const Vec3& axis,
+                   Real separation, Manifold& out) {
+  const auto [ca, cb] = closest_points(wa.nodes[wa.edge_node[i]], wa.edge_direction[i],
+                                       wb.nodes[wb.edge_node[j]], wb.edge_direction[j]);
+  out.normal = axis;
+  out.count = 1;
+  out.point[0] = 0.5 * (ca + cb);
+  out.gap[0] = separation;
+  out.feature = ManifoldFeature::edges;
+  out.feature_a = i;
+  out.feature_b = j;
 }
 
 // The face manifold of out.feature (face_of_a or face_of_b, out.feature_a/_b its face): the
@@ -322,17 +341,7 @@ bool block_manifold(const Block& a, const WorldBlock& wa, const Block& b, const 
   const Real tolerance = 0.005 * std::min(a.bounding_radius(), b.bounding_radius());
   const Real face_best = std::max(face_a.separation, face_b.separation);
   if (edges.edge_a >= 0 && edges.separation > face_best + tolerance) {
-    const Vec3& pa = wa.nodes[wa.edge_node[edges.edge_a]];
-    const Vec3& pb = wb.nodes[wb.edge_node[edges.edge_b]];
-    const auto [ca, cb] =
-        closest_points(pa, wa.edge_direction[edges.edge_a], pb, wb.edge_direction[edges.edge_b]);
-    out.normal = edges.axis;
-    out.count = 1;
-    out.point[0] = 0.5 * (ca + cb);
-    out.gap[0] = edges.separation;
-    out.feature = ManifoldFeature::edges;
-    out.feature_a = edges.edge_a;
-    out.feature_b = edges.edge_b;
+    edge_manifold(wa, wb, edges.edge_a, edges.edge_b, edges.axis, edges.separation, out);
     return true;
   }
   if (face_b.separation > face_a.separation + tolerance) {
@@ -344,7 +353,36 @@ bool block_manifold(const Block& a, const WorldBlock& wa, const Block& b, const 
     out.feature_a = face_a.face;
     out.feature_b = -1;
   }
-  return clip_reference_face(a, wa, b, wb, margin, s, out);
+  if (clip_reference_face(a, wa, b, wb, margin, s, out)) {
+    // The clipped corners' heights over the reference plane are the gaps where the incident face
+    // lies over it; where the nearest features are elsewhere (a corner just past the face's rim,
+    // the incident face rising steeply there) they can exceed the blocks' gap, and a contact
+    // that thinks itself farther than it is closes into overlap. The best axis's separation is
+    // a lower bound of the gap: the nearest point takes it where it is less by more than
+    // round-off. (Where it does, a node lies deeper than the clipped corners, so rebuild_manifold
+    // searches such a pair again rather than keep its face: the pair cache stays exact.)
+    const Real bound = edges.edge_a >= 0 ? std::max(face_best, edges.separation) : face_best;
+    int nearest = 0;
+    for (int k = 1; k < out.count; ++k)
+      if (out.gap[k] < out.gap[nearest]) nearest = k;
+    if (out.gap[nearest] > bound + kSameGap * std::min(a.bounding_radius(), b.bounding_radius()))
+      out.gap[nearest] = bound;
+    return true;
+  }
+  // The preferred face's clip can be empty: no part of the other block's most opposed face lies
+  // over the reference face. Where the blocks meet edge across edge (the best edge pair within
+  // the tolerance of the face, or better), that pair's point is the contact, its separation a
+  // lower bound of the gap: before issue 20 such pairs were dropped as apart though within their
+  // margin or already overlapping, and coins crossing so in a pour sank up to 19 % of their
+  // thickness into each other in one step. Without an edge pair the blocks lie beside each other
+  // past the face's rim (a box sliding by the end of another, edges parallel): no contact, as a
+  // point held to the face's plane there would brake a body that passes by untouched.
+  if (edges.edge_a >= 0) {
+    edge_manifold(wa, wb, edges.edge_a, edges.edge_b, edges.axis, edges.separation, out);
+    return true;
+  }
+  out.count = 0;
+  return false;
 }
 
 bool rebuild_manifold(const Block& a, const WorldBlock& wa, const Block& b, const WorldBlock& wb,
@@ -360,7 +398,7 @@ bool rebuild_manifold(const Block& a, const WorldBlock& wa, const Block& b, cons
   // the deepest of its block below the reference plane. Once the blocks have turned so that
   // another node lies beyond them (a rim that was edge on edge now lying face on face), the
   // cached gap would be too large, so the pair is searched again in full.
-  const Real tolerance = 1e-6 * std::min(a.bounding_radius(), b.bounding_radius());
+  const Real tolerance = kSameGap * std::min(a.bounding_radius(), b.bounding_radius());
   if (detected.feature == ManifoldFeature::edges) {
     const int i = detected.feature_a, j = detected.feature_b;
     const Vec3& pa = wa.nodes[wa.edge_node[i]];
@@ -377,11 +415,7 @@ bool rebuild_manifold(const Block& a, const WorldBlock& wa, const Block& b, cons
       for (const Vec3& p : wb.nodes) lowest_b = std::min(lowest_b, axis.dot(p));
       if (lowest_b - highest_a >= separation - tolerance) {
         if (separation > margin) return false;
-        const auto [ca, cb] = closest_points(pa, da, pb, db);
-        out.normal = axis;
-        out.count = 1;
-        out.point[0] = 0.5 * (ca + cb);
-        out.gap[0] = separation;
+        edge_manifold(wa, wb, i, j, axis, separation, out);
         return true;
       }
     }
