@@ -370,15 +370,17 @@ bool block_manifold(const Block& a, const WorldBlock& wa, const Block& b, const 
     return true;
   }
   // The preferred face's clip can be empty: no part of the other block's most opposed face lies
-  // over the reference face. Where the blocks meet edge across edge (the best edge pair within
-  // the tolerance of the face, or better), that pair's point is the contact, its separation a
-  // lower bound of the gap: before issue 20 such pairs were dropped as apart though within their
-  // margin or already overlapping, and coins crossing so in a pour sank up to 19 % of their
-  // thickness into each other in one step. Without an edge pair the blocks lie beside each other
-  // past the face's rim (a box sliding by the end of another, edges parallel): no contact, as a
-  // point held to the face's plane there would brake a body that passes by untouched.
+  // over the reference face. Where the blocks meet edge across edge, the best edge pair's point
+  // is the contact, with the better of the two lower bounds of the gap (the face's separation
+  // where the edge axis separates less: a pair the face keeps apart is never pushed as if it
+  // overlapped along the edge axis). Before issue 20 such pairs were dropped as apart though
+  // within their margin or already overlapping, and coins crossing so in a pour sank up to 19 %
+  // of their thickness into each other in one step. Without an edge pair the blocks lie beside
+  // each other past the face's rim (a box sliding by the end of another, edges parallel): no
+  // contact, as a point held to the face's plane there would brake a body that passes by.
   if (edges.edge_a >= 0) {
-    edge_manifold(wa, wb, edges.edge_a, edges.edge_b, edges.axis, edges.separation, out);
+    edge_manifold(wa, wb, edges.edge_a, edges.edge_b, edges.axis,
+                  std::max(edges.separation, face_best), out);
     return true;
   }
   out.count = 0;

@@ -107,9 +107,8 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
   const std::vector<BlockPose>& poses = w.broad_phase.poses();
   const std::vector<BlockPair>& block_pairs = w.broad_phase.block_pairs();
   const std::vector<WallPair>& wall_pairs = w.broad_phase.wall_pairs();
-  auto block_of = [&](int proxy) -> const Block& {
-    const BlockProxy& p = proxies[proxy];
-    return model.blocks[model.bodies[p.body].blocks[p.instance].block];
+  auto proxy_block = [&](int proxy) -> const Block& {
+    return block_of(model, proxies[proxy].body, proxies[proxy].instance);
   };
 
   // 2-3. Narrow phase and patches, pair by pair: block pairs, then block-wall pairs, as one
@@ -132,7 +131,7 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
     for (const BlockPair& pair : block_pairs) w.in_pair[pair.a] = w.in_pair[pair.b] = 1;
     for (const WallPair& pair : wall_pairs) w.in_pair[pair.proxy] = 1;
     parallel_for(static_cast<long long>(proxies.size()), 256, [&](long long i) {
-      if (w.in_pair[i]) place_block(block_of(static_cast<int>(i)), poses[i], w.world[i]);
+      if (w.in_pair[i]) place_block(proxy_block(static_cast<int>(i)), poses[i], w.world[i]);
     });
   }
 
@@ -143,7 +142,7 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
       const size_t first = out.size();
       if (item < n_block) {
         const BlockPair& pair = block_pairs[static_cast<size_t>(item)];
-        const Block &a = block_of(pair.a), &b = block_of(pair.b);
+        const Block &a = proxy_block(pair.a), &b = proxy_block(pair.b);
         if (ahead) {
           ContactPatch p;
           if (patch_ahead(w, pair, a, b, s, p)) out.push_back(std::move(p));
@@ -158,7 +157,7 @@ void find_patches(const Model& model, PatchVariant variant, ContactWorkspace& w,
       } else {
         const WallPair& pair = wall_pairs[static_cast<size_t>(item - n_block)];
         const Wall& wall = model.walls[pair.wall];
-        const Block& block = block_of(pair.proxy);
+        const Block& block = proxy_block(pair.proxy);
         if (ahead) {
           const int body = proxies[pair.proxy].body;
           Manifold m;

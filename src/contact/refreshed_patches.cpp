@@ -13,14 +13,11 @@ void refresh_patches(const Model& model, const State& state, const ContactWorksp
   scratch.slots.resize(detected.size());
   scratch.found.assign(detected.size(), 0);
   const std::vector<Real>& reach = contact.reach;
-  auto placed_block = [&](int body, int instance) -> const Block& {
-    return model.blocks[model.bodies[body].blocks[instance].block];
-  };
   parallel_for(n, 64, [&](long long k) {
     const ContactPatch& d = detected[static_cast<size_t>(k)];
     ManifoldScratch& s = scratch.threads[static_cast<size_t>(thread_index())];
     const BlockInstance& instance_a = model.bodies[d.body_a].blocks[d.block_a];
-    const Block& a = placed_block(d.body_a, d.block_a);
+    const Block& a = block_of(model, d.body_a, d.block_a);
     place_block(a, block_pose(instance_a, state.bodies[d.body_a]), s.a);
     Manifold m;
     bool found;
@@ -29,7 +26,7 @@ void refresh_patches(const Model& model, const State& state, const ContactWorksp
       found = wall_manifold(a, s.a, wall.point, wall.normal, 2 * reach[d.body_a], s, m);
     } else {
       const BlockInstance& instance_b = model.bodies[d.body_b].blocks[d.block_b];
-      const Block& b = placed_block(d.body_b, d.block_b);
+      const Block& b = block_of(model, d.body_b, d.block_b);
       place_block(b, block_pose(instance_b, state.bodies[d.body_b]), s.b);
       found = rebuild_manifold(a, s.a, b, s.b, reach[d.body_a] + reach[d.body_b], d.manifold, s,
                                m);

@@ -163,10 +163,10 @@ void advance(const Model& model, State& state, Workspace& w) {
     if (s > 0) {
       w.times.integrate += seconds_since(clock);
       // 3'. The detected pairs' patches again at the sub-step's poses, from their features.
-      refresh_patches(model, state, w.contact, w.patches, w.refreshed, w.moved_patches);
+      refresh_patches(model, state, w.contact, w.patches, w.refreshed, w.substep_patches);
       w.times.narrow_phase += seconds_since(clock);
       // 4'. The sub-step's forces.
-      compute_contact_forces(model, state, w.moved_patches, h, w.forces, loads, w.sync);
+      compute_contact_forces(model, state, w.substep_patches, h, w.forces, loads, w.sync);
       w.times.forces += seconds_since(clock);
     }
     sweeps += w.forces.solver.sweeps;

@@ -44,7 +44,7 @@ struct Workspace {
   // With contact.substeps > 1: the bodies at the step's detection, and the detected patches
   // rebuilt at the current sub-step (refreshed_patches.hpp) with their scratch.
   std::vector<BodyState> detected;
-  std::vector<ContactPatch> moved_patches;
+  std::vector<ContactPatch> substep_patches;
   RefreshScratch refreshed;
   // Forces and torques from outside (the public API's external_force / external_torque), held
   // until changed; empty: none. Sized to the bodies when set.

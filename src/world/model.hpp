@@ -114,6 +114,11 @@ int add_block(Model& model, Block block);
 // Fills each body's force_sensors from the scene's sensors.
 void assign_force_sensors(Model& model);
 
+// The block of a body's `instance`-th block instance.
+inline const Block& block_of(const Model& model, int body, int instance) {
+  return model.blocks[model.bodies[body].blocks[instance].block];
+}
+
 // A body's size: the largest distance from its centre of mass that any of its nodes can have
 // (block offset + block bounding radius). Contact tolerances are fractions of it.
 Real body_size(const Model& model, int body);
