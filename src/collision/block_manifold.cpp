@@ -110,10 +110,6 @@ std::pair<Vec3, Vec3> closest_points(const Vec3& p1, const Vec3& d1, const Vec3&
 // count as equally deep (reduce_points).
 constexpr Real kEqualDepth = 1e-4;
 
-// Gaps that differ by less than this fraction of the smaller block's bounding radius differ by
-// round-off: a cached feature still holds (rebuild_manifold), a clipped corner's gap stands.
-constexpr Real kSameGap = 1e-6;
-
 // The first edge of a placed block's polygon, in the world: a direction that turns with it.
 Vec3 face_edge(const Block& block, const WorldBlock& world, int face) {
   const std::vector<int>& nodes = block.polygons()[face].nodes;
@@ -353,22 +349,7 @@ bool block_manifold(const Block& a, const WorldBlock& wa, const Block& b, const 
     out.feature_a = face_a.face;
     out.feature_b = -1;
   }
-  if (clip_reference_face(a, wa, b, wb, margin, s, out)) {
-    // The clipped corners' heights over the reference plane are the gaps where the incident face
-    // lies over it; where the nearest features are elsewhere (a corner just past the face's rim,
-    // the incident face rising steeply there) they can exceed the blocks' gap, and a contact
-    // that thinks itself farther than it is closes into overlap. The best axis's separation is
-    // a lower bound of the gap: the nearest point takes it where it is less by more than
-    // round-off. (Where it does, a node lies deeper than the clipped corners, so rebuild_manifold
-    // searches such a pair again rather than keep its face: the pair cache stays exact.)
-    const Real bound = edges.edge_a >= 0 ? std::max(face_best, edges.separation) : face_best;
-    int nearest = 0;
-    for (int k = 1; k < out.count; ++k)
-      if (out.gap[k] < out.gap[nearest]) nearest = k;
-    if (out.gap[nearest] > bound + kSameGap * std::min(a.bounding_radius(), b.bounding_radius()))
-      out.gap[nearest] = bound;
-    return true;
-  }
+  if (clip_reference_face(a, wa, b, wb, margin, s, out)) return true;
   // The preferred face's clip can be empty: no part of the other block's most opposed face lies
   // over the reference face. Where the blocks meet edge across edge, the best edge pair's point
   // is the contact, with the better of the two lower bounds of the gap (the face's separation
@@ -400,7 +381,7 @@ bool rebuild_manifold(const Block& a, const WorldBlock& wa, const Block& b, cons
   // the deepest of its block below the reference plane. Once the blocks have turned so that
   // another node lies beyond them (a rim that was edge on edge now lying face on face), the
   // cached gap would be too large, so the pair is searched again in full.
-  const Real tolerance = kSameGap * std::min(a.bounding_radius(), b.bounding_radius());
+  const Real tolerance = 1e-6 * std::min(a.bounding_radius(), b.bounding_radius());
   if (detected.feature == ManifoldFeature::edges) {
     const int i = detected.feature_a, j = detected.feature_b;
     const Vec3& pa = wa.nodes[wa.edge_node[i]];
