@@ -43,6 +43,7 @@ struct Deepest {
 const char* feature_name(ManifoldFeature f) {
   switch (f) {
     case ManifoldFeature::edges: return "an edge pair";
+    case ManifoldFeature::edges_past_rim: return "an edge pair past a face's rim";
     case ManifoldFeature::face_of_a: return "a face of A";
     case ManifoldFeature::face_of_b: return "a face of B";
     default: return "-";

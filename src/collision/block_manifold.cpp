@@ -362,6 +362,7 @@ bool block_manifold(const Block& a, const WorldBlock& wa, const Block& b, const 
   if (edges.edge_a >= 0) {
     edge_manifold(wa, wb, edges.edge_a, edges.edge_b, edges.axis,
                   std::max(edges.separation, face_best), out);
+    out.feature = ManifoldFeature::edges_past_rim;
     return true;
   }
   out.count = 0;
@@ -403,6 +404,11 @@ bool rebuild_manifold(const Block& a, const WorldBlock& wa, const Block& b, cons
       }
     }
     // Turned parallel or no longer the supports: the whole search.
+    if (searched) *searched = true;
+    return block_manifold(a, wa, b, wb, margin, s, out);
+  }
+  if (detected.feature == ManifoldFeature::edges_past_rim) {
+    // Its gap floor is the face's, which only the search finds again.
     if (searched) *searched = true;
     return block_manifold(a, wa, b, wb, margin, s, out);
   }

@@ -34,8 +34,12 @@ inline constexpr int kManifoldPoints = 4;
 // Which features made a manifold: the pair of edges whose cross product is its normal, the
 // reference face of A or of B that the other block's incident face was clipped against, or a
 // wall. A sub-step rebuilds the manifold from them at the bodies' new poses without searching
-// the axes again (rebuild_manifold, refreshed_patches.hpp).
-enum class ManifoldFeature : std::uint8_t { none, edges, face_of_a, face_of_b, wall };
+// the axes again (rebuild_manifold, refreshed_patches.hpp). `edges_past_rim` is an edge pair's
+// point taken where a preferred face's clip came out empty: its gap is bounded by that face's
+// separation too, which the edges alone do not give back, so it is rebuilt by the whole search
+// and never kept in the pair cache (the cache then answers exactly as the search would).
+enum class ManifoldFeature : std::uint8_t { none, edges, face_of_a, face_of_b, wall,
+                                            edges_past_rim };
 
 struct Manifold {
   Vec3 normal = Vec3::UnitZ();  // unit, from A into B (the force on A acts along -normal)
