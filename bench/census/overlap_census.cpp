@@ -28,15 +28,19 @@ struct Deepest {
   Real time = 0;
   int body_a = -1, body_b = -1;
   ManifoldFeature feature = ManifoldFeature::none;  // of the step's patch, where there was one
+  Real start_share = 0;  // the patch's depth at the step's start (< 0: still apart), same unit
+  long long already = 0;  // overlaps that were already deeper than the threshold at the start
 
-  void add(Real s, Real t, int a, int b, ManifoldFeature f) {
+  void add(Real s, Real t, int a, int b, ManifoldFeature f, Real start, Real threshold) {
     ++count;
+    if (start > threshold) ++already;
     if (s <= share) return;
     share = s;
     time = t;
     body_a = a;
     body_b = b;
     feature = f;
+    start_share = start;
   }
 };
 
@@ -56,6 +60,9 @@ void print(const char* what, const Deepest& d) {
     std::printf(", deepest %.3g %% at t = %.5g s (bodies %d and %d%s%s)", 100 * d.share, d.time,
                 d.body_a, d.body_b, d.feature == ManifoldFeature::none ? "" : ", patch of ",
                 d.feature == ManifoldFeature::none ? "" : feature_name(d.feature));
+  if (d.feature != ManifoldFeature::none)
+    std::printf("; %lld of them already as deep at the step's start, the deepest %.3g %% deep "
+                "there", d.already, 100 * d.start_share);
   std::printf("\n");
 }
 
@@ -86,14 +93,21 @@ int main(int argc, char** argv) {
   Workspace w;
   ContactWorkspace probe;  // margin 0: the pairs that overlap
   std::vector<ContactPatch> overlaps;
-  std::map<std::pair<int, int>, ManifoldFeature> seen;
+  struct Seen {
+    ManifoldFeature feature;
+    Real depth;  // the patch's, at the step's start
+  };
+  std::map<std::pair<int, int>, Seen> seen;
   Deepest missed, held;
   const long long steps = std::llround(read.scene.duration / read.scene.time_step);
   for (long long k = 0; k < steps; ++k) {
     find_contact_forces(model, state, w);
     seen.clear();
     for (const ContactPatch& p : w.patches)
-      if (p.wall < 0) seen[{p.body_a, p.body_b}] = p.manifold.feature;
+      if (p.wall < 0) {
+        auto [it, fresh] = seen.try_emplace({p.body_a, p.body_b}, Seen{p.manifold.feature, p.depth});
+        if (!fresh && p.depth > it->second.depth) it->second = {p.manifold.feature, p.depth};
+      }
     advance(model, state, w);
     probe.reach.assign(model.bodies.size(), 0);
     detect_contacts(model, state, patch_variant(model.scene), probe, overlaps);
@@ -103,9 +117,10 @@ int main(int argc, char** argv) {
       if (p.depth <= share * size) continue;
       const auto it = seen.find({p.body_a, p.body_b});
       if (it == seen.end())
-        missed.add(p.depth / size, state.time, p.body_a, p.body_b, ManifoldFeature::none);
+        missed.add(p.depth / size, state.time, p.body_a, p.body_b, ManifoldFeature::none, 0, 1);
       else
-        held.add(p.depth / size, state.time, p.body_a, p.body_b, it->second);
+        held.add(p.depth / size, state.time, p.body_a, p.body_b, it->second.feature,
+                 it->second.depth / size, share);
     }
   }
   std::printf("%s: %lld steps of %g s (%d sub-steps), overlaps deeper than %g %% of the smaller "

@@ -55,16 +55,13 @@ Real driven_work(const Model& model, const State& state, const ContactForces& fo
 }
 
 // One sub-step (the whole step without contact.substeps) of length h from `state`, with the
-// forces of the last solve in w.forces: stages 5 (integration), 6 (overlap correction), the
-// clock and the driven bodies, 7 (sensors). Returns whether the correction moved bodies.
+// forces of the last solve in w.forces: stages 5 (integration), 6 (overlap correction, after the
+// last sub-step only), the clock and the driven bodies, 7 (sensors). `budget`, where the step
+// corrects overlap, is the energy the step started from plus the work the driven bodies and the
+// external loads have done in it so far. Returns whether the correction moved bodies.
 bool integrate_substep(const Model& model, State& state, Workspace& w, Real h, bool last,
-                       Real step_start_time, int substep) {
+                       Real step_start_time, int substep, Real* budget) {
   const SceneDef& scene = model.scene;
-  // 5. Integration of every moving body under gravity and its contact force and torque.
-  bool correct = scene.contact.model == ContactModel::semm &&
-                 scene.integrator == IntegratorKind::default_ && !w.patches.empty();
-  if (w.sync) correct = w.sync->sum(correct ? 1 : 0) > 0;  // all ranks, or none
-  Real energy_before = correct ? system_energies(model, state, w.sync).total() : 0;
   const bool loaded = !w.loads.empty();
   const bool sensing = !scene.sensors.empty();
   if (!w.contact.reach.empty() || loaded || sensing) w.before = state.bodies;
@@ -73,7 +70,8 @@ bool integrate_substep(const Model& model, State& state, Workspace& w, Real h, b
                           ? driven_work(model, state, w.forces, h)
                           : 0;
   state.driven_work += pushed;
-  energy_before += pushed;
+  if (budget) *budget += pushed;
+  // 5. Integration of every moving body under gravity and its contact force and torque.
   const bool all = w.subset.empty();
   parallel_for(static_cast<long long>(model.bodies.size()), 256, [&](long long i) {
     if (model.bodies[i].driven() || (!all && !w.subset.owned[i]) || w.sleep.is_frozen(i)) return;
@@ -82,12 +80,15 @@ bool integrate_substep(const Model& model, State& state, Workspace& w, Real h, b
     integrate(scene.integrator, model.bodies[i].inertia, scene.gravity, force, torque, h,
               state.bodies[i]);
   });
-  // 6. Correction of existing overlap, within the energy the contacts dissipated (default).
-  // The external loads' work over the step is no dissipation of the contacts': a drag's loss
-  // must not fund a correction, nor a push's gain hide one.
-  if (correct && loaded) energy_before += external_work(model, w.loads, w.before, state.bodies, h);
+  // 6. Correction of existing overlap, within the energy the contacts dissipated over the step
+  // (default). The external loads' work is no dissipation of the contacts': a drag's loss must
+  // not fund a correction, nor a push's gain hide one. With sub-steps it runs once, after the
+  // last: each sub-step's speculative contacts already keep gaps from closing, and what overlap
+  // the step leaves is what the correction is for; a correction after every sub-step solved the
+  // separation n times for one step's result.
+  if (budget && loaded) *budget += external_work(model, w.loads, w.before, state.bodies, h);
   const bool corrected =
-      correct && correct_overlap(model, w.forces, h, energy_before, state, w.sync).applied;
+      budget && last && correct_overlap(model, w.forces, h, *budget, state, w.sync).applied;
   if (last) {
     ++state.step;
     // No drift from summing dt; and where dt divides a second (1e-5, 1/240), step / steps per
@@ -159,6 +160,11 @@ void advance(const Model& model, State& state, Workspace& w) {
   const ExternalLoads* loads = w.loads.empty() ? nullptr : &w.loads;
   bool corrected = false, unconverged = false, scaled = false;
   int sweeps = 0;
+  // The overlap correction's budget (integrate_substep): the energy the step starts from.
+  bool correct = scene.contact.model == ContactModel::semm &&
+                 scene.integrator == IntegratorKind::default_ && !w.patches.empty();
+  if (w.sync) correct = w.sync->sum(correct ? 1 : 0) > 0;  // all ranks, or none
+  Real budget = correct ? system_energies(model, state, w.sync).total() : 0;
   for (int s = 0; s < substeps; ++s) {
     if (s > 0) {
       w.times.integrate += seconds_since(clock);
@@ -172,7 +178,8 @@ void advance(const Model& model, State& state, Workspace& w) {
     sweeps += w.forces.solver.sweeps;
     unconverged = unconverged || !w.forces.solver.converged;
     scaled = scaled || w.forces.solver.scale < 1;
-    corrected = integrate_substep(model, state, w, h, s + 1 == substeps, step_start_time, s) ||
+    corrected = integrate_substep(model, state, w, h, s + 1 == substeps, step_start_time, s,
+                                  correct ? &budget : nullptr) ||
                 corrected;
   }
   if (corrected) ++w.times.corrected_steps;
