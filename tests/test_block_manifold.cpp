@@ -347,8 +347,9 @@ TEST(BlockManifold, NoPairWithinTheMarginIsMissed) {
   EXPECT_EQ(missed, 0);
   EXPECT_GE(past_rim, 7);  // at least the pairs the search used to drop
   std::cout << "[ measured ] " << within << " pairs within the margin, " << overlapping
-            << " of them overlapping, " << past_rim << " met past a face's rim; " << too_far << " patches whose least gap exceeds the "
-            << "true gap, by up to " << largest_excess << "\n";
+            << " of them overlapping, " << past_rim << " met past a face's rim; " << too_far
+            << " patches whose least gap exceeds the true gap, by up to " << largest_excess
+            << "\n";
 }
 
 }  // namespace

@@ -105,8 +105,9 @@ int main(int argc, char** argv) {
     seen.clear();
     for (const ContactPatch& p : w.patches)
       if (p.wall < 0) {
-        auto [it, fresh] = seen.try_emplace({p.body_a, p.body_b}, Seen{p.manifold.feature, p.depth});
-        if (!fresh && p.depth > it->second.depth) it->second = {p.manifold.feature, p.depth};
+        const Seen here{p.manifold.feature, p.depth};
+        auto [it, fresh] = seen.try_emplace({p.body_a, p.body_b}, here);
+        if (!fresh && p.depth > it->second.depth) it->second = here;
       }
     advance(model, state, w);
     probe.reach.assign(model.bodies.size(), 0);

@@ -373,6 +373,11 @@ bool rebuild_manifold(const Block& a, const WorldBlock& wa, const Block& b, cons
                       Real margin, const Manifold& detected, ManifoldScratch& s, Manifold& out,
                       bool* searched) {
   if (searched) *searched = false;
+  // Where the cached features no longer answer: the whole search.
+  auto search_again = [&] {
+    if (searched) *searched = true;
+    return block_manifold(a, wa, b, wb, margin, s, out);
+  };
   out.count = 0;
   out.feature = detected.feature;
   out.feature_a = detected.feature_a;
@@ -403,15 +408,10 @@ bool rebuild_manifold(const Block& a, const WorldBlock& wa, const Block& b, cons
         return true;
       }
     }
-    // Turned parallel or no longer the supports: the whole search.
-    if (searched) *searched = true;
-    return block_manifold(a, wa, b, wb, margin, s, out);
+    return search_again();  // turned parallel or no longer the supports
   }
-  if (detected.feature == ManifoldFeature::edges_past_rim) {
-    // Its gap floor is the face's, which only the search finds again.
-    if (searched) *searched = true;
-    return block_manifold(a, wa, b, wb, margin, s, out);
-  }
+  // Its gap floor is the face's, which only the search finds again.
+  if (detected.feature == ManifoldFeature::edges_past_rim) return search_again();
   if (detected.feature != ManifoldFeature::face_of_a &&
       detected.feature != ManifoldFeature::face_of_b)
     return false;
@@ -428,8 +428,7 @@ bool rebuild_manifold(const Block& a, const WorldBlock& wa, const Block& b, cons
   if (out.count > 0 && lowest >= shallowest_kept - tolerance) return true;
   // A node deeper than the clipped face's corners (or none of them within the margin while a
   // node is): the whole search.
-  if (searched) *searched = true;
-  return block_manifold(a, wa, b, wb, margin, s, out);
+  return search_again();
 }
 
 bool block_manifold(const Block& a, const BlockPose& pose_a, const Block& b,
