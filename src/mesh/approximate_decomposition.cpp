@@ -99,15 +99,6 @@ struct Candidate {
   bool tried = false;
 };
 
-Real radius_about_mean(const std::vector<Vec3>& points) {
-  Vec3 mean = Vec3::Zero();
-  for (const Vec3& p : points) mean += p;
-  mean /= static_cast<Real>(std::max<size_t>(points.size(), 1));
-  Real radius = 0;
-  for (const Vec3& p : points) radius = std::max(radius, (p - mean).norm());
-  return radius;
-}
-
 // What the cutter needs beside the part: the mesh's distance field, for cutting by distance.
 struct Context {
   const MeshDistance* distance;

@@ -225,4 +225,13 @@ std::optional<PolyhedronDef> hull_block(const std::vector<Vec3>& points, Real we
   return std::nullopt;
 }
 
+Real radius_about_mean(const std::vector<Vec3>& points) {
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& p : points) mean += p;
+  mean /= static_cast<Real>(std::max<size_t>(points.size(), 1));
+  Real radius = 0;
+  for (const Vec3& p : points) radius = std::max(radius, (p - mean).norm());
+  return radius;
+}
+
 }  // namespace tem

@@ -12,6 +12,10 @@ namespace tem {
 // Volume of the convex hull of the points; 0 when they span no volume.
 Real hull_volume(const std::vector<Vec3>& points);
 
+// Largest distance of the points from their mean: the size Block measures its tolerance by, and
+// so the scale of a weld distance.
+Real radius_about_mean(const std::vector<Vec3>& points);
+
 // The convex hull of any points (repeats and interior points allowed) as a PolyhedronDef that
 // Block accepts, or nothing when they span no usable volume. Hull vertices closer than `weld`
 // are welded first (one of them kept), and any vertex that would break one of Block's checks

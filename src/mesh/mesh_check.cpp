@@ -26,12 +26,11 @@
 #include <tuple>
 #include <utility>
 
-#include "mesh/cgal_operations.hpp"
+#include "mesh/crossing_faces.hpp"
 
 namespace tem {
 namespace {
 
-constexpr Real kAreaTolerance = 1e-14;
 constexpr Real kVolumeTolerance = 1e-12;
 constexpr int kExamples = 3;  // places named per kind of defect
 // Enough to say how badly a mesh crosses itself, few enough to keep in memory.
@@ -239,7 +238,7 @@ Eigen::AlignedBox<Real, 3> used_bounds(const TriangleMesh& mesh, const FaceScree
 
 void check_degenerate_faces(const TriangleMesh& mesh, Real diagonal, FaceScreen& screen,
                             Defects& defects) {
-  const Real tolerance = kAreaTolerance * diagonal * diagonal;
+  const Real tolerance = kFaceAreaTolerance * diagonal * diagonal;
   for (int f = 0; f < static_cast<int>(mesh.faces.size()); ++f) {
     if (screen.no_edges[f]) continue;
     const auto& t = mesh.faces[f];

@@ -8,6 +8,10 @@
 
 namespace tem {
 
+// A face whose area is at most this times the square of the bounding box's diagonal has zero
+// area: its normal is round-off.
+inline constexpr Real kFaceAreaTolerance = 1e-14;
+
 struct MeshCheck {
   int vertices = 0;
   int faces = 0;

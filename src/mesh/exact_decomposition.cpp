@@ -1,28 +1,24 @@
-// Everything TEM asks of CGAL: the self-intersection test of check_mesh() and the exact convex
-// decomposition (Nef polyhedra). The only translation unit that includes CGAL's headers.
+// The exact convex decomposition of a closed mesh (CGAL's Nef polyhedra), and the repairs that
+// make Block-valid blocks of its pieces. With crossing_faces.cpp, the only translation units that
+// include CGAL's headers; this one is by far the heavier to compile (exact kernel, Nef), so it
+// holds nothing else.
 
 // With -fsanitize, GCC 12 reports "may be used uninitialized" inside std::pair for the
 // default-constructed Plane_3 and Direction_3 that CGAL's Epic_converter returns on failure
 // (CGAL/Epic_converter.h). The warning comes after inlining, at the std::pair line, so it cannot
-// be fenced around CGAL's includes; it is switched off for this file only (clang, which builds
-// the fuzz target, has no such warning).
+// be fenced around CGAL's includes; it is switched off for this file only.
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
 
-#include "mesh/cgal_operations.hpp"
+#include "mesh/mesh_decomposition.hpp"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Nef_polyhedron_3.h>
-#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polyhedron_3.h>
 #include <CGAL/Surface_mesh.h>
-#include <CGAL/box_intersection_d.h>
 #include <CGAL/convex_decomposition_3.h>
-#include <CGAL/convex_hull_3.h>
 #include <CGAL/exceptions.h>
-#include <CGAL/intersections.h>
 
 #include <algorithm>
 #include <array>
@@ -37,19 +33,17 @@
 #include <unordered_map>
 
 #include "mass/surface_integrals.hpp"
+#include "mesh/crossing_faces.hpp"
 #include "mesh/hull_polyhedron.hpp"
+#include "mesh/mesh_check.hpp"
 
 namespace tem {
 namespace {
 
-namespace PMP = CGAL::Polygon_mesh_processing;
-
-using Inexact = CGAL::Exact_predicates_inexact_constructions_kernel;
-
 // The mesh as a CGAL surface whose face k is face k of `mesh` (faces are added in order, and a
 // Surface_mesh numbers its faces in the order they are added). Throws MeshError where CGAL cannot
 // link a face into the surface (an edge with more than two faces, or inconsistent orientation):
-// check_mesh() reports those before it asks for self-intersections.
+// check_mesh() reports those with the rest of what is wrong with a mesh.
 template <class Kernel>
 CGAL::Surface_mesh<typename Kernel::Point_3> surface_mesh(const TriangleMesh& mesh) {
   using Surface = CGAL::Surface_mesh<typename Kernel::Point_3>;
@@ -81,102 +75,6 @@ CGAL::Surface_mesh<typename Kernel::Point_3> surface_mesh(const TriangleMesh& me
 }
 
 }  // namespace
-
-std::vector<std::pair<int, int>> self_intersecting_faces(const TriangleMesh& mesh, int max_pairs) {
-  using Surface = CGAL::Surface_mesh<Inexact::Point_3>;
-  if (max_pairs <= 0 || mesh.faces.empty()) return {};
-  const Surface surface = surface_mesh<Inexact>(mesh);
-  // The yes/no test stops at the first intersection: the common case, a clean mesh, pays for one
-  // sweep only.
-  if (!PMP::does_self_intersect(surface)) return {};
-  std::vector<std::pair<Surface::Face_index, Surface::Face_index>> found;
-  PMP::self_intersections(surface, std::back_inserter(found));
-  std::vector<std::pair<int, int>> pairs;
-  pairs.reserve(found.size());
-  for (const auto& [a, b] : found) {
-    const int i = static_cast<int>(a.idx()), j = static_cast<int>(b.idx());
-    // CGAL reports a degenerate face as (f, f); check_mesh() names those as degenerate itself.
-    if (i != j) pairs.emplace_back(std::min(i, j), std::max(i, j));
-  }
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  if (pairs.size() > static_cast<size_t>(max_pairs)) pairs.resize(static_cast<size_t>(max_pairs));
-  return pairs;
-}
-
-namespace {
-
-// Whether faces f and g of a soup meet anywhere but at the vertices they share by number (and,
-// for two shared vertices, the edge between them). Exact: Epick's predicates are filtered.
-bool faces_cross(const std::vector<Inexact::Point_3>& p, const std::array<int, 3>& f,
-                 const std::array<int, 3>& g) {
-  int shared = 0, fi[3], gi[3];  // fi[k], gi[k]: the corner of f and of g at shared vertex k
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b)
-      if (f[a] == g[b]) {
-        fi[shared] = a;
-        gi[shared] = b;
-        ++shared;
-      }
-  const Inexact::Triangle_3 tf(p[f[0]], p[f[1]], p[f[2]]), tg(p[g[0]], p[g[1]], p[g[2]]);
-  switch (shared) {
-    case 0:
-      return CGAL::do_intersect(tf, tg);
-    case 1: {
-      // Both contain the shared vertex v; they meet elsewhere exactly when the edge of one
-      // opposite v meets the other (the part they share is convex and runs from v to a point
-      // on one of those edges).
-      const Inexact::Segment_3 ef(p[f[(fi[0] + 1) % 3]], p[f[(fi[0] + 2) % 3]]);
-      const Inexact::Segment_3 eg(p[g[(gi[0] + 1) % 3]], p[g[(gi[0] + 2) % 3]]);
-      return CGAL::do_intersect(ef, tg) || CGAL::do_intersect(eg, tf);
-    }
-    case 2: {
-      // Sharing the edge p-q, they overlap exactly when they lie in one plane on one side of it.
-      const auto& a = p[f[fi[0]]];
-      const auto& b = p[f[fi[1]]];
-      const auto& r = p[f[3 - fi[0] - fi[1]]];
-      const auto& s = p[g[3 - gi[0] - gi[1]]];
-      return CGAL::coplanar(a, b, r, s) && CGAL::coplanar_orientation(a, b, r, s) == CGAL::POSITIVE;
-    }
-    default:
-      return true;  // the same three vertices: the faces coincide
-  }
-}
-
-}  // namespace
-
-std::vector<std::pair<int, int>> crossing_faces(const TriangleMesh& mesh,
-                                                const std::vector<char>& left_out,
-                                                std::size_t max_pairs) {
-  using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
-  std::vector<Inexact::Point_3> points;
-  points.reserve(mesh.vertices.size());
-  for (const Vec3& v : mesh.vertices) points.emplace_back(v.x(), v.y(), v.z());
-  std::vector<Box> boxes;
-  boxes.reserve(mesh.faces.size());
-  for (size_t f = 0; f < mesh.faces.size(); ++f) {
-    if (left_out[f]) continue;
-    const auto& t = mesh.faces[f];
-    boxes.emplace_back(points[t[0]].bbox() + points[t[1]].bbox() + points[t[2]].bbox(),
-                       static_cast<int>(f));
-  }
-  std::vector<std::pair<int, int>> pairs;
-  struct Enough {};  // thrown to stop the sweep at max_pairs
-  // Boxes are closed: faces that only touch are candidates, and the exact test decides.
-  try {
-    CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& a, const Box& b) {
-      const int i = a.info(), j = b.info();
-      if (faces_cross(points, mesh.faces[i], mesh.faces[j])) {
-        pairs.emplace_back(std::min(i, j), std::max(i, j));
-        if (pairs.size() >= max_pairs) throw Enough{};
-      }
-    });
-  } catch (const Enough&) {
-  }
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  return pairs;
-}
 
 namespace {
 
@@ -219,16 +117,6 @@ struct Piece {
   std::string defect;                            // empty when Block accepts def
   Real reshaped = 0;  // volume changed by trimmed_hull to make it a valid block (make_piece)
 };
-
-// Largest distance of the points from their mean: the size Block measures its tolerance by.
-Real piece_size(const std::vector<Vec3>& points) {
-  Vec3 mean = Vec3::Zero();
-  for (const Vec3& p : points) mean += p;
-  mean /= static_cast<Real>(std::max<size_t>(points.size(), 1));
-  Real size = 0;
-  for (const Vec3& p : points) size = std::max(size, (p - mean).norm());
-  return size;
-}
 
 std::string describe_point(const Vec3& p) {
   std::ostringstream s;
@@ -417,7 +305,7 @@ std::optional<Piece> make_piece(const std::vector<ExactPoint>& points,
   // mesh's own vertex there). A piece it would change by more than the budget stays defective,
   // to be joined to a neighbour (decompose).
   if (auto hull = trimmed_hull(piece.def.points,
-                               std::max(tol.weld, kWeldFraction * piece_size(piece.def.points)))) {
+                               std::max(tol.weld, kWeldFraction * radius_about_mean(piece.def.points)))) {
     try {
       const Real volume = Block(*hull).volume();
       if (std::abs(volume - piece.volume) <= tol.rounding) {
@@ -470,7 +358,7 @@ std::optional<Piece> convex_union(const Piece& a, const Piece& b, Real reshape) 
 std::optional<Piece> rounded_union(const Piece& a, const Piece& b, Real budget, Real weld) {
   std::vector<Vec3> points = a.def.points;
   points.insert(points.end(), b.def.points.begin(), b.def.points.end());
-  auto hull = trimmed_hull(points, std::max(weld, kWeldFraction * piece_size(points)));
+  auto hull = trimmed_hull(points, std::max(weld, kWeldFraction * radius_about_mean(points)));
   if (!hull) return std::nullopt;
   Piece joined;
   try {
@@ -530,7 +418,20 @@ Real check_input(const TriangleMesh& mesh, const Surface& surface) {
       throw MeshError(mesh.source + ": edge " + std::to_string(surface.source(h).idx()) + "-" +
                       std::to_string(surface.target(h).idx()) +
                       " has a face on one side only: the mesh is not closed");
-  const auto crossing = self_intersecting_faces(mesh, 1);
+  // The soup test takes faces of non-zero area only (check_mesh() refuses the others first).
+  Vec3 low = mesh.vertices.front(), high = low;
+  for (const Vec3& p : mesh.vertices) {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  const Real least_area = kFaceAreaTolerance * (high - low).squaredNorm();
+  for (size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& t = mesh.faces[f];
+    const Vec3& a = mesh.vertices[t[0]];
+    if (!(0.5 * (mesh.vertices[t[1]] - a).cross(mesh.vertices[t[2]] - a).norm() > least_area))
+      throw MeshError(mesh.source + ": face " + std::to_string(f) + " has zero area");
+  }
+  const auto crossing = crossing_faces(mesh, std::vector<char>(mesh.faces.size(), 0), 1);
   if (!crossing.empty())
     throw MeshError(mesh.source + ": faces " + std::to_string(crossing[0].first) + " and " +
                     std::to_string(crossing[0].second) + " intersect");

@@ -1,19 +1,14 @@
-// Everything TEM asks of CGAL, behind plain types: CGAL's headers are included by
-// cgal_operations.cpp alone (they are heavy to compile).
+// The self-intersection test of a triangle soup, behind plain types: CGAL's headers stay in
+// crossing_faces.cpp (and the exact decomposition's in exact_decomposition.cpp).
 #pragma once
 
 #include <cstddef>
 #include <utility>
 #include <vector>
 
-#include "mesh/mesh_decomposition.hpp"
 #include "mesh/triangle_mesh.hpp"
 
 namespace tem {
-
-// Pairs of faces (i < j) that intersect other than along the edges and vertices they share, at
-// most `max_pairs` of them (CGAL's Polygon_mesh_processing::self_intersections).
-std::vector<std::pair<int, int>> self_intersecting_faces(const TriangleMesh& mesh, int max_pairs);
 
 // Every pair of faces (i < j, sorted) that intersect other than at the vertices they share by
 // number and the edges between those: a triangle-soup test, so that a mesh with open or
