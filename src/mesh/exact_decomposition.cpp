@@ -304,8 +304,8 @@ std::optional<Piece> make_piece(const std::vector<ExactPoint>& points,
   // closer than the mesh's resolution are welded first (a cut meets a mesh edge a hair from the
   // mesh's own vertex there). A piece it would change by more than the budget stays defective,
   // to be joined to a neighbour (decompose).
-  if (auto hull = trimmed_hull(piece.def.points,
-                               std::max(tol.weld, kWeldFraction * radius_about_mean(piece.def.points)))) {
+  const Real weld = std::max(tol.weld, kWeldFraction * radius_about_mean(piece.def.points));
+  if (auto hull = trimmed_hull(piece.def.points, weld)) {
     try {
       const Real volume = Block(*hull).volume();
       if (std::abs(volume - piece.volume) <= tol.rounding) {

@@ -20,8 +20,8 @@ Real radius_about_mean(const std::vector<Vec3>& points);
 // Block accepts, or nothing when they span no usable volume. Hull vertices closer than `weld`
 // are welded first (one of them kept), and any vertex that would break one of Block's checks
 // with its tolerance divided by `margin` (a corner too flat, a facet not flat enough, a sliver
-// facet) is dropped and the hull taken again. The result is the hull of a subset of the points, so it
-// lies inside their hull (and a part's block inside its cell); the points dropped are
+// facet) is dropped and the hull taken again. The result is the hull of a subset of the points,
+// so it lies inside their hull (and a part's block inside its cell); the points dropped are
 // near-repeats and corners within a hair of their neighbours' hull, so it is hardly smaller.
 std::optional<PolyhedronDef> hull_block(const std::vector<Vec3>& points, Real weld,
                                         Real margin = 10);
