@@ -412,19 +412,14 @@ void coalesce(std::vector<Piece>& blocks, Real reshape, Real margin) {
 // non-self-intersecting surface and does not check (its preconditions are off in release).
 // Returns the mesh's volume.
 template <class Surface>
-Real check_input(const TriangleMesh& mesh, const Surface& surface) {
+Real check_input(const TriangleMesh& mesh, const Surface& surface, Real diagonal) {
   for (auto h : surface.halfedges())
     if (surface.is_border(h))
       throw MeshError(mesh.source + ": edge " + std::to_string(surface.source(h).idx()) + "-" +
                       std::to_string(surface.target(h).idx()) +
                       " has a face on one side only: the mesh is not closed");
   // The soup test takes faces of non-zero area only (check_mesh() refuses the others first).
-  Vec3 low = mesh.vertices.front(), high = low;
-  for (const Vec3& p : mesh.vertices) {
-    low = low.cwiseMin(p);
-    high = high.cwiseMax(p);
-  }
-  const Real least_area = kFaceAreaTolerance * (high - low).squaredNorm();
+  const Real least_area = kFaceAreaTolerance * diagonal * diagonal;
   for (size_t f = 0; f < mesh.faces.size(); ++f) {
     const auto& t = mesh.faces[f];
     const Vec3& a = mesh.vertices[t[0]];
@@ -471,7 +466,10 @@ MeshDecomposition decompose(const TriangleMesh& mesh) {
     if (!mesh.vertices[i].allFinite())
       throw MeshError(mesh.source + ": vertex " + std::to_string(i) + " is not finite");
   const auto surface = surface_mesh<Exact>(mesh);
-  result.mesh_volume = check_input(mesh, surface);
+  Eigen::AlignedBox<Real, 3> bounds;
+  for (const Vec3& p : mesh.vertices) bounds.extend(p);
+  const Real diagonal = bounds.diagonal().norm();
+  result.mesh_volume = check_input(mesh, surface, diagonal);
 
   Nef nef(surface);
   CGAL::convex_decomposition_3(nef);
@@ -501,12 +499,7 @@ MeshDecomposition decompose(const TriangleMesh& mesh) {
   std::vector<Piece> blocks, slivers;
   for (Piece& p : pieces)
     (p.defect.empty() && p.volume >= sliver ? blocks : slivers).push_back(std::move(p));
-  Vec3 low = mesh.vertices.front(), high = low;
-  for (const Vec3& p : mesh.vertices) {
-    low = low.cwiseMin(p);
-    high = high.cwiseMax(p);
-  }
-  const Real margin = kVolumeTolerance * (high - low).norm();
+  const Real margin = kVolumeTolerance * diagonal;
   // What making valid blocks changed: hulls without corners bent by rounding (make_piece),
   // thin pieces joined to a neighbour into a hull a hair larger than both, thin pieces dropped.
   Real reshaped = 0;
