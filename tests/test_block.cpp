@@ -205,6 +205,27 @@ TEST(BlockErrors, RejectsWhatCannotBeSimulated) {
   EXPECT_NE(message(too_few).find("at least 4 points"), std::string::npos);
 }
 
+// A block's checks measure its own size, so moving it must not change the verdict. A small
+// tetrahedron with a sliver face, as approximate cutting makes near a mesh's surface: computed
+// from the coordinates as they stand, the sliver's normal carried round-off of the offset
+// (0.5 here) and its third corner seemed 1e-10 off a plane the block measures to 6e-13.
+TEST(Block, ValidityDoesNotDependOnWhereTheBlockSits) {
+  const Real length = 1e-3, width = 1e-6, height = 2e-4;
+  PolyhedronDef sliver;
+  sliver.points = {Vec3(0, 0, 0), Vec3(length, 0, 0), Vec3(length / 2, width, 0),
+                   Vec3(length / 2, width / 3, height)};
+  sliver.polygons = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+  const Real volume = length * width * height / 6;
+  for (const Vec3& offset : {Vec3(0, 0, 0), Vec3(0.5, 0.6, 0.5), Vec3(-3.0, 7.0, 11.0)}) {
+    PolyhedronDef moved = sliver;
+    for (Vec3& p : moved.points) p += offset;
+    SCOPED_TRACE(offset.transpose());
+    Real moved_volume = 0;
+    EXPECT_NO_THROW(moved_volume = Block(moved).volume());
+    EXPECT_NEAR(moved_volume, volume, 1e-6 * volume);
+  }
+}
+
 TEST(ConvexHull, CubeWithRedundantPoints) {
   std::vector<Vec3> pts;
   for (int i = 0; i < 8; ++i) pts.push_back(Vec3(i & 1, (i >> 1) & 1, (i >> 2) & 1));

@@ -24,12 +24,12 @@ std::string describe(const Vec3& p) {
 
 // Newell's normal of a polygon loop: robust for any planar loop, length = twice the area.
 Vec3 newell_normal(const std::vector<Vec3>& pts, const std::vector<int>& loop) {
+  // About the loop's first point: the cross products are then of the loop's own size, so a
+  // small polygon far from the origin keeps its normal to round-off of its size, not of the
+  // coordinates (a block's validity must not depend on where it sits).
+  const Vec3& o = pts[loop[0]];
   Vec3 n = Vec3::Zero();
-  for (size_t i = 0; i < loop.size(); ++i) {
-    const Vec3& a = pts[loop[i]];
-    const Vec3& b = pts[loop[(i + 1) % loop.size()]];
-    n += a.cross(b);
-  }
+  for (size_t i = 1; i + 1 < loop.size(); ++i) n += (pts[loop[i]] - o).cross(pts[loop[i + 1]] - o);
   return n;
 }
 

@@ -155,10 +155,9 @@ std::optional<std::vector<bool>> flawed_vertices(const PolyhedronDef& def, Real 
   for (const auto& loop : def.polygons) {
     const size_t m = loop.size();
     Vec3 n = Vec3::Zero(), centre = Vec3::Zero();
-    for (size_t i = 0; i < m; ++i) {
-      n += pts[loop[i]].cross(pts[loop[(i + 1) % m]]);
-      centre += pts[loop[i]];
-    }
+    for (size_t i = 0; i < m; ++i) centre += pts[loop[i]];
+    for (size_t i = 1; i + 1 < m; ++i)  // Block's Newell normal, about the first corner
+      n += (pts[loop[i]] - pts[loop[0]]).cross(pts[loop[i + 1]] - pts[loop[0]]);
     centre /= static_cast<Real>(m);
     auto turn = [&](size_t i, const Vec3& normal) {
       const Vec3& a = pts[loop[i]];
