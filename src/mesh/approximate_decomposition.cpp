@@ -12,7 +12,10 @@
 //   - candidate planes: normal to x, y, z, the cube's face and body diagonals and the part's
 //     principal axes of inertia, at kOffsets even offsets across the part, then refined about
 //     the best; along a direction where the part's corners take only a few positions (a model
-//     made of flat faces), the planes through those positions instead;
+//     made of flat faces), the planes through those positions instead; the best plane's normal
+//     is then tilted about two axes across it, through the plane's point nearest the part's
+//     corners' mean, by kTilts falling angles, each time about the best so far (the fixed
+//     directions meet an arm or a fillet at an angle only by chance);
 //   - a candidate's volume score is the sum of its two sides' hull volumes, less
 //     kLookaheadWeight times what one more cut of each side would save
 //     (approximate_lookahead.hpp); ties go to the smaller of the two sides' concavities;
@@ -28,6 +31,7 @@
 // Each candidate is scored on its own and the best taken in a fixed order, so the blocks are
 // the same, to the bit, with any number of threads.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -35,6 +39,7 @@
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 
 #include "mass/surface_integrals.hpp"
 #include "mesh/approximate_lookahead.hpp"
@@ -67,6 +72,8 @@ constexpr Real kWeld = 1e-5;
 // the mesh is cut first, by the plane whose sides stray least (issue 21: 2 %, less a margin
 // for the sampled estimate that ranks the planes).
 constexpr Real kDistanceGoal = 0.015;
+// Tilts of the best plane's normal, in radians, each about the best plane after the last.
+constexpr std::array<Real, 3> kTilts{0.16, 0.08, 0.04};
 // Candidate planes are ranked by distance on the hull of the sides' corners thinned to one per
 // cell of a grid this many cells long (a 75,000-face part has tens of thousands of corners).
 constexpr int kDistanceCloudCells = 32;
@@ -199,6 +206,29 @@ int best_untried(const std::vector<Candidate>& candidates, const Context& contex
   return best;
 }
 
+// Tilts the best candidate's normal by each of kTilts in turn, four ways (about two axes across
+// it, either sense), about the plane's point nearest the mean of the part's corners, so that the
+// part is cut at about the same place.
+void tilt_best(const MeshPart& part, std::vector<Candidate>& candidates, const Context& context) {
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& p : part.points) mean += p;
+  mean /= static_cast<Real>(std::max<size_t>(part.points.size(), 1));
+  for (Real angle : kTilts) {
+    const int best = best_untried(candidates, context);
+    if (best < 0) return;
+    const CutPlane plane = candidates[best].plane;
+    const Vec3 through = mean - (plane.normal.dot(mean) - plane.offset) * plane.normal;
+    const Vec3 u = plane.normal.unitOrthogonal(), v = plane.normal.cross(u);
+    const size_t first = candidates.size();
+    for (const Vec3& axis : {u, v})
+      for (Real sense : {-1.0, 1.0}) {
+        const Vec3 tilted = Eigen::AngleAxis<Real>(sense * angle, axis) * plane.normal;
+        candidates.push_back({{tilted, tilted.dot(through)}, 0});
+      }
+    score_all(part, candidates, first, context);
+  }
+}
+
 // The leaf's two children by the best candidate plane whose sides both make valid blocks.
 std::optional<Split> split(const Leaf& leaf, Context context) {
   std::vector<Candidate> candidates;
@@ -224,6 +254,7 @@ std::optional<Split> split(const Leaf& leaf, Context context) {
       candidates.push_back({{centre.plane.normal, offset}, step});
     score_all(leaf.part, candidates, first, context);
   }
+  tilt_best(leaf.part, candidates, context);
   for (int best; (best = best_untried(candidates, context)) >= 0;) {
     Candidate& chosen = candidates[best];
     chosen.tried = true;
