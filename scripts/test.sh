@@ -19,6 +19,10 @@
 # own files (the engine they call keeps both sanitizers), the API compiled once for the static
 # and the shared library, and CGAL's exact decomposition in a file of its own, apart from the
 # light self-intersection test that the mesh checks and the mesh fuzz target need.
+#
+# Both builds use precompiled headers (Eigen and the standard headers in each library, gtest too
+# in the tests; CMakeLists.txt). The ci build, 2026-11-27 on the 2-core machine: 535 s wall and
+# 928 CPU-seconds with them, 635 s and 1,170 without (-DCMAKE_DISABLE_PRECOMPILE_HEADERS=ON).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
