@@ -430,11 +430,7 @@ Real check_input(const TriangleMesh& mesh, const Surface& surface, Real diagonal
   if (!crossing.empty())
     throw MeshError(mesh.source + ": faces " + std::to_string(crossing[0].first) + " and " +
                     std::to_string(crossing[0].second) + " intersect");
-  std::vector<std::array<Vec3, 3>> triangles;
-  triangles.reserve(mesh.faces.size());
-  for (const auto& f : mesh.faces)
-    triangles.push_back({mesh.vertices[f[0]], mesh.vertices[f[1]], mesh.vertices[f[2]]});
-  const Real volume = surface_mass_properties(triangles).volume;
+  const Real volume = surface_mass_properties(corner_triangles(mesh)).volume;
   if (!(volume > 0))
     throw MeshError(mesh.source + ": the mesh encloses no positive volume (" +
                     std::to_string(volume) + "): its faces point inwards or it is flat");

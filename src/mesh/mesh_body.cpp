@@ -46,11 +46,7 @@ std::shared_ptr<const MeshBody> load_mesh_body(const std::string& file_path, Rea
   body->check = check_mesh(mesh);
   body->read_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::vector<std::array<Vec3, 3>> triangles;
-  triangles.reserve(mesh.faces.size());
-  for (const auto& f : mesh.faces)
-    triangles.push_back({mesh.vertices[f[0]], mesh.vertices[f[1]], mesh.vertices[f[2]]});
-  body->surface = surface_mass_properties(triangles);
+  body->surface = surface_mass_properties(corner_triangles(mesh));
   body->decomposition = cutting == MeshCutting::exact ? exact_decomposition(mesh)
                                                       : approximate_decomposition(mesh, max_blocks);
   if (body->decomposition.blocks.empty())

@@ -21,6 +21,15 @@ struct TriangleMesh {
   std::vector<std::array<int, 3>> faces;
 };
 
+// The mesh's faces as corner triangles, for surface integrals such as surface_mass_properties().
+inline std::vector<std::array<Vec3, 3>> corner_triangles(const TriangleMesh& mesh) {
+  std::vector<std::array<Vec3, 3>> triangles;
+  triangles.reserve(mesh.faces.size());
+  for (const auto& f : mesh.faces)
+    triangles.push_back({mesh.vertices[f[0]], mesh.vertices[f[1]], mesh.vertices[f[2]]});
+  return triangles;
+}
+
 // A mesh that cannot become a body. what() names the file and why; a mesh refused by
 // check_mesh() gets one message for everything wrong with it, e.g. "parts/nut.obj: refused:
 // 6 open edges, 1 pinched vertex", then the first places of each kind (mesh_check.hpp).
