@@ -10,7 +10,7 @@
 #include "geometry/primitives.hpp"
 
 namespace tem {
-namespace {
+namespace test_block {
 
 // Barycentric coordinates (s, t, u) of p in element e (eq. 19): p = s a1 + t a2 + u a3.
 Vec3 element_coordinates(const Element& e, const Vec3& p) { return e.inverse * p; }
@@ -259,5 +259,5 @@ TEST(ConvexHull, RejectsDegenerateAndNonConvexPointSets) {
             std::string::npos);
 }
 
-}  // namespace
+}  // namespace test_block
 }  // namespace tem

@@ -13,7 +13,7 @@
 #include "geometry/primitives.hpp"
 
 namespace tem {
-namespace {
+namespace test_block_manifold {
 
 constexpr Real kTight = 1e-12;
 constexpr Real kInf = std::numeric_limits<Real>::infinity();
@@ -352,5 +352,5 @@ TEST(BlockManifold, NoPairWithinTheMarginIsMissed) {
             << "\n";
 }
 
-}  // namespace
+}  // namespace test_block_manifold
 }  // namespace tem

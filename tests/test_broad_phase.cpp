@@ -10,7 +10,7 @@
 #include "collision/broad_phase.hpp"
 
 namespace tem {
-namespace {
+namespace test_broad_phase {
 
 SceneDef random_pile(int bodies, unsigned seed) {
   std::mt19937 rng(seed);
@@ -123,5 +123,5 @@ TEST(BroadPhase, SparseAndSingle) {
   EXPECT_TRUE(broad.block_pairs().empty());
 }
 
-}  // namespace
+}  // namespace test_broad_phase
 }  // namespace tem

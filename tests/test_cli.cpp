@@ -20,7 +20,7 @@
 #include "support/tem_process.hpp"
 
 namespace tem {
-namespace {
+namespace test_cli {
 
 using testing_support::contains;
 using testing_support::run_tem;
@@ -403,5 +403,5 @@ TEST(Cli, ThreadsGiveBitIdenticalResults) {
   std::filesystem::remove_all(dir + "_2");
 }
 
-}  // namespace
+}  // namespace test_cli
 }  // namespace tem

@@ -10,7 +10,7 @@
 #include "support/simulate.hpp"
 
 namespace tem {
-namespace {
+namespace test_contact_before_overlap {
 
 using testing_support::report;
 using testing_support::simulate;
@@ -112,5 +112,5 @@ TEST(ContactBeforeOverlap, PassingInsideTheMarginPushesNothing) {
   EXPECT_EQ(state.bodies[1].omega, Vec3::Zero());
 }
 
-}  // namespace
+}  // namespace test_contact_before_overlap
 }  // namespace tem

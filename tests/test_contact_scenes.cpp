@@ -9,7 +9,7 @@
 #include "contact/detect_contacts.hpp"
 
 namespace tem {
-namespace {
+namespace test_contact_scenes {
 
 constexpr Real kTight = 1e-12;
 constexpr Real kPi = std::numbers::pi;
@@ -222,5 +222,5 @@ TEST(ContactScenes, CoinFlatOnTheFloor) {
   EXPECT_LT((patches[0].point - Vec3(0.5, 0.5, -0.5e-4)).norm(), 1e-12);
 }
 
-}  // namespace
+}  // namespace test_contact_scenes
 }  // namespace tem

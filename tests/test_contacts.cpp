@@ -10,7 +10,7 @@
 #include "geometry/primitives.hpp"
 
 namespace tem {
-namespace {
+namespace test_contacts {
 
 constexpr Real kTight = 1e-12;
 
@@ -195,5 +195,5 @@ TEST(Contacts, CoinRimOnTheFloor) {
   EXPECT_NEAR(paper[0].depth, -d * paper[0].normal.z(), kTight);
 }
 
-}  // namespace
+}  // namespace test_contacts
 }  // namespace tem

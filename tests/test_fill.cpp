@@ -12,7 +12,7 @@
 #include "world/placement.hpp"
 
 namespace tem {
-namespace {
+namespace test_fill {
 
 // 150 of the paper's coins in a 2 x 2 x 3 region above a floor, beside one explicit box.
 std::string pile_text(int seed, int count = 150) {
@@ -154,5 +154,5 @@ TEST(Fill, SceneFileRoundTrip) {
   for (size_t i = 0; i < a.bodies.size(); ++i) EXPECT_EQ(a.bodies[i].x, b.bodies[i].x);
 }
 
-}  // namespace
+}  // namespace test_fill
 }  // namespace tem

@@ -16,7 +16,7 @@
 #include "dynamics/integrator.hpp"
 
 namespace tem {
-namespace {
+namespace test_integrators {
 
 // A brick (box) of sides a, b, c along its principal axes and mass M: principal moments
 // M(b^2+c^2)/12, M(a^2+c^2)/12, M(a^2+b^2)/12. The principal axes are the columns of `axes` in
@@ -366,5 +366,5 @@ TEST(IntegratorDefault, ConstantTorqueGivesLinearMomentum) {
   EXPECT_LT(orthonormality_error(s.g), 1e-12);
 }
 
-}  // namespace
+}  // namespace test_integrators
 }  // namespace tem

@@ -15,7 +15,7 @@
 #include "world/model.hpp"
 
 namespace tem {
-namespace {
+namespace test_mass_properties {
 
 constexpr Real kRoundOff = 1e-12;  // relative
 
@@ -250,5 +250,5 @@ TEST(MassProperties, RandomConvexHullsAgreeWithSurfaceIntegrals) {
   report("random hulls, second moment vs surface integrals, worst relative difference", worst);
 }
 
-}  // namespace
+}  // namespace test_mass_properties
 }  // namespace tem

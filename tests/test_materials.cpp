@@ -13,7 +13,7 @@
 #include "support/simulate.hpp"
 
 namespace tem {
-namespace {
+namespace test_materials {
 
 using testing_support::report;
 using testing_support::simulate;
@@ -351,5 +351,5 @@ TEST(MaterialsPenalty, RollingTorqueSlowsAndStopsTheRoll) {
   EXPECT_LT(resisted.end_speed, 0.1);
 }
 
-}  // namespace
+}  // namespace test_materials
 }  // namespace tem

@@ -17,7 +17,7 @@
 #include "support/simulate.hpp"
 
 namespace tem {
-namespace {
+namespace test_mesh_approximate {
 
 using testing_support::report;
 
@@ -274,5 +274,5 @@ TEST(MeshApproxCut, CornersInsideTheSolidAndVolumes) {
               1e-12 * torus.volume);
 }
 
-}  // namespace
+}  // namespace test_mesh_approximate
 }  // namespace tem

@@ -14,7 +14,7 @@
 #include "support/tem_process.hpp"
 
 namespace tem {
-namespace {
+namespace test_mesh_command {
 
 using testing_support::run_tem;
 using testing_support::temp_path;
@@ -30,13 +30,10 @@ TEST(MeshCommand, JsonGivesOverCoverageAndHausdorffInPercent) {
 
   // The denominators, from the mesh as read: its volume and its bounding box's diagonal.
   const TriangleMesh mesh = read_mesh_file(file);
-  std::vector<std::array<Vec3, 3>> triangles;
   Eigen::AlignedBox<Real, 3> box;
-  for (const auto& f : mesh.faces) {
-    triangles.push_back({mesh.vertices[f[0]], mesh.vertices[f[1]], mesh.vertices[f[2]]});
+  for (const auto& f : mesh.faces)
     for (int v : f) box.extend(mesh.vertices[v]);
-  }
-  const Real volume = surface_mass_properties(triangles).volume;
+  const Real volume = surface_mass_properties(corner_triangles(mesh)).volume;
   const Real diagonal = box.diagonal().norm();
   EXPECT_NEAR(j["volume"].get<double>(), volume, 1e-12 * volume);
   EXPECT_NEAR(j["diagonal"].get<double>(), diagonal, 1e-12 * diagonal);
@@ -78,5 +75,5 @@ TEST(MeshCommand, RefusedMeshGivesOneMessage) {
   std::filesystem::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace test_mesh_command
 }  // namespace tem

@@ -22,18 +22,11 @@
 #include "support/simulate.hpp"
 
 namespace tem {
-namespace {
+namespace test_mesh_exact {
 
 using testing_support::report;
 
 constexpr Real kExact = 1e-9;  // relative: the blocks' vertices are CGAL's exact ones, rounded
-
-std::vector<std::array<Vec3, 3>> triangles_of(const TriangleMesh& mesh) {
-  std::vector<std::array<Vec3, 3>> tris;
-  for (const auto& f : mesh.faces)
-    tris.push_back({mesh.vertices[f[0]], mesh.vertices[f[1]], mesh.vertices[f[2]]});
-  return tris;
-}
 
 Real size_of(const TriangleMesh& mesh) {
   Vec3 low = mesh.vertices.front(), high = low;
@@ -103,7 +96,7 @@ Cut cut_and_check(const TriangleMesh& mesh, const std::string& name) {
   for (const PolyhedronDef& def : d.blocks) cut.blocks.emplace_back(def);
   for (const Block& b : cut.blocks) EXPECT_TRUE(b.convex()) << name;
 
-  const MassProperties surface = surface_mass_properties(triangles_of(mesh));
+  const MassProperties surface = surface_mass_properties(corner_triangles(mesh));
   const MassProperties blocks = combined(cut.blocks);
   const Real size = size_of(mesh);
   const Real volume_error = std::abs(blocks.volume - surface.volume) / surface.volume;
@@ -238,7 +231,7 @@ std::vector<RevolvedPart> revolved_parts() {
 }
 
 Real volume_error(const Cut& cut, const TriangleMesh& mesh) {
-  const Real surface = surface_mass_properties(triangles_of(mesh)).volume;
+  const Real surface = surface_mass_properties(corner_triangles(mesh)).volume;
   return std::abs(combined(cut.blocks).volume - surface) / surface;
 }
 
@@ -314,5 +307,5 @@ TEST(MeshExact, DISABLED_ThousandFaceMeshesTiming) {
   cut_and_check(testing_support::rounded_to_float(spool), "spool_24_bore_chamfer_fillet_float");
 }
 
-}  // namespace
+}  // namespace test_mesh_exact
 }  // namespace tem

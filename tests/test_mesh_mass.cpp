@@ -24,7 +24,7 @@
 #include "world/model.hpp"
 
 namespace tem {
-namespace {
+namespace test_mesh_mass {
 
 using testing_support::temp_path;
 
@@ -162,5 +162,5 @@ TEST_F(MeshMass, ApproximateMeshInACompoundIsPlacedByItsPose) {
   EXPECT_GT(blocks_mass(model, model.bodies[0]).mass, 1.1 * model.bodies[0].inertia.mass);
 }
 
-}  // namespace
+}  // namespace test_mesh_mass
 }  // namespace tem

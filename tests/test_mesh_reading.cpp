@@ -28,7 +28,7 @@
 #include "support/mesh_shapes.hpp"
 
 namespace tem {
-namespace {
+namespace test_mesh_reading {
 
 using namespace tem::testing_support;
 namespace fs = std::filesystem;
@@ -45,10 +45,7 @@ fs::path scratch_dir() {
 
 // Volume from Eberly's surface integrals: a route that shares no code with check_mesh().
 Real surface_volume(const TriangleMesh& mesh) {
-  std::vector<std::array<Vec3, 3>> triangles;
-  for (const auto& f : mesh.faces)
-    triangles.push_back({mesh.vertices[f[0]], mesh.vertices[f[1]], mesh.vertices[f[2]]});
-  return surface_mass_properties(triangles).volume;
+  return surface_mass_properties(corner_triangles(mesh)).volume;
 }
 
 // The mesh as a reader of 32-bit floats sees it (binary STL stores floats; before TEM read the
@@ -350,10 +347,7 @@ TEST(MeshRead, PrintsNothing) {
 
 // Mass properties from Eberly's surface integrals (shares no code with the reader).
 MassProperties surface_properties(const TriangleMesh& mesh) {
-  std::vector<std::array<Vec3, 3>> triangles;
-  for (const auto& f : mesh.faces)
-    triangles.push_back({mesh.vertices[f[0]], mesh.vertices[f[1]], mesh.vertices[f[2]]});
-  return surface_mass_properties(triangles);
+  return surface_mass_properties(corner_triangles(mesh));
 }
 
 // A closed, lopsided octahedron whose coordinates carry 17 significant digits: its tips are
@@ -1042,5 +1036,5 @@ TEST(MeshCheck, LargeMeshTimes) {
             << ms(checked - read) << " ms\n";
 }
 
-}  // namespace
+}  // namespace test_mesh_reading
 }  // namespace tem

@@ -17,7 +17,7 @@
 #include "support/mesh_shapes.hpp"
 
 namespace tem {
-namespace {
+namespace test_mesh_refusals {
 
 using namespace tem::testing_support;
 
@@ -297,5 +297,5 @@ TEST(MeshRefusal, CrossingsStopAtAHundredThousandPairs) {
       << message.substr(0, 2000);
 }
 
-}  // namespace
+}  // namespace test_mesh_refusals
 }  // namespace tem

@@ -21,7 +21,7 @@
 #include "support/vtu_reader.hpp"
 
 namespace tem {
-namespace {
+namespace test_mesh_scenes {
 
 using testing_support::contains;
 using testing_support::load_scene;
@@ -173,11 +173,8 @@ TEST(MeshScene, ExactBodyHasTheMeshsMassProperties) {
   // The holed cube: [0, 3]^3 less the bar [1, 2]^2 x [0, 3]: volume 24, centre (1.5, 1.5, 1.5).
   EXPECT_NEAR(body.volume, 24.0, 24.0 * 1e-12);
   EXPECT_LT((-body.origin_offset - Vec3(1.5, 1.5, 1.5)).norm(), 1e-12 * 3);
-  std::vector<std::array<Vec3, 3>> triangles;
-  const TriangleMesh mesh = testing_support::holed_cube_mesh();
-  for (const auto& f : mesh.faces)
-    triangles.push_back({mesh.vertices[f[0]], mesh.vertices[f[1]], mesh.vertices[f[2]]});
-  const MassProperties surface = surface_mass_properties(triangles);
+  const MassProperties surface =
+      surface_mass_properties(corner_triangles(testing_support::holed_cube_mesh()));
   const Mat3 expected = inertia_from_second_moment(surface.second_moment);
   EXPECT_LT((body.inertia.inertia - expected).cwiseAbs().maxCoeff(),
             1e-9 * expected.cwiseAbs().maxCoeff());
@@ -322,5 +319,5 @@ TEST(PhysicsScene, MeshStaplePourComesToRest) {
   EXPECT_LE(watch.largest_energy_rise, 1e-12 * mass * model.scene.gravity.norm() * 0.01);
 }
 
-}  // namespace
+}  // namespace test_mesh_scenes
 }  // namespace tem

@@ -8,7 +8,7 @@
 #include "world/model.hpp"
 
 namespace tem {
-namespace {
+namespace test_model {
 
 ShapeDef paper_ring(int blocks, bool allow_nonconvex) {
   ShapeDef ring;
@@ -135,5 +135,5 @@ TEST(Model, PaperColumnLowestPoint) {
   EXPECT_NEAR(lowest, 0.3 - 0.2 * std::sin(80 * deg) - 0.05 * std::cos(80 * deg), 1e-15);
 }
 
-}  // namespace
+}  // namespace test_model
 }  // namespace tem

@@ -24,7 +24,7 @@
 #include "tem/simulation.hpp"
 
 namespace tem {
-namespace {
+namespace test_pair_cache {
 
 using testing_support::report;
 using testing_support::simulate;
@@ -235,5 +235,5 @@ TEST(PairCache, ResumedColumnIsBitIdentical) {
   std::filesystem::remove(scene_file);
 }
 
-}  // namespace
+}  // namespace test_pair_cache
 }  // namespace tem

@@ -29,7 +29,7 @@
 #include "support/parallel.hpp"
 
 namespace tem {
-namespace {
+namespace test_paraview {
 
 namespace fs = std::filesystem;
 using testing_support::read_vtu;
@@ -498,5 +498,5 @@ TEST(VtuBinary, TheBytesAreTheSameOnAnyNumberOfThreads) {
   EXPECT_EQ(read_vtu(one).arrays.at("v").blocks, 15u);
 }
 
-}  // namespace
+}  // namespace test_paraview
 }  // namespace tem

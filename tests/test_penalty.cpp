@@ -8,7 +8,7 @@
 #include "support/simulate.hpp"
 
 namespace tem {
-namespace {
+namespace test_penalty {
 
 using testing_support::report;
 using testing_support::simulate;
@@ -99,5 +99,5 @@ TEST(Penalty, TimeStepLimitIsATenthOfTheContactPeriod) {
               1e-15);
 }
 
-}  // namespace
+}  // namespace test_penalty
 }  // namespace tem

@@ -9,7 +9,7 @@
 #include "support/simulate.hpp"
 
 namespace tem {
-namespace {
+namespace test_physics {
 
 using testing_support::report;
 using testing_support::simulate;
@@ -136,5 +136,5 @@ TEST(Physics, BoxReboundsWithItsRestitution) {
   EXPECT_NEAR(rebound / -impact, 0.5, 0.03);
 }
 
-}  // namespace
+}  // namespace test_physics
 }  // namespace tem

@@ -16,7 +16,7 @@
 #include "io/scene_writer.hpp"
 
 namespace tem {
-namespace {
+namespace test_process_scene_reader {
 
 SceneReadResult read_text(const std::string& text) { return read_scene_text(text, "test.json"); }
 
@@ -617,5 +617,5 @@ TEST(ProcessSceneReader, SensorKeysOfAnotherType) {
                  {"must be one of", "did you mean \"plane\""});
 }
 
-}  // namespace
+}  // namespace test_process_scene_reader
 }  // namespace tem

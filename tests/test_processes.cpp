@@ -19,7 +19,7 @@
 #include "tem/simulation.hpp"
 
 namespace tem {
-namespace {
+namespace test_processes {
 
 using testing_support::lines;
 using testing_support::run_tem;
@@ -338,11 +338,11 @@ TEST(Processes, InletRegionTooSmallForOneCopyIsRefused) {
   }
 }
 
-}  // namespace
+}  // namespace test_processes
 }  // namespace tem
 
 namespace tem {
-namespace {
+namespace test_processes {
 
 // Copies placed by an inlet inside a cup (whose bounding sphere holds the whole inlet) never
 // start overlapping anything: grains that pop apart at insertion, as DEM users know them, would
@@ -423,11 +423,11 @@ TEST(Processes, FillDrawsASizeFactorPerCopy) {
   EXPECT_GT(heaviest / lightest, 3);
 }
 
-}  // namespace
+}  // namespace test_processes
 }  // namespace tem
 
 namespace tem {
-namespace {
+namespace test_processes {
 
 // A conveyor belt that stays where it is while its surface slides (motion.surface_velocity):
 // the block speeds up at mu g to the surface's speed, rides to the belt's end and falls off it.
@@ -449,11 +449,11 @@ TEST(Processes, SlidingSurfaceCarriesABlockToTheBeltsEndAndOff) {
   EXPECT_EQ(sim.position(belt), belt_at);  // the belt itself never moved
 }
 
-}  // namespace
+}  // namespace test_processes
 }  // namespace tem
 
 namespace tem {
-namespace {
+namespace test_processes {
 
 // A turning drum (12 staves and both end caps in one body, 2 rad/s) with 64 grains: the force
 // sensor's torque on the drum about its axis equals the bed's weight acting at its centre of
@@ -494,5 +494,5 @@ TEST(Processes, DrumDriveTorqueBalancesTheBedsWeight) {
   std::filesystem::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace test_processes
 }  // namespace tem

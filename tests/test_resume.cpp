@@ -16,7 +16,7 @@
 #include "support/tem_process.hpp"
 
 namespace tem {
-namespace {
+namespace test_resume {
 
 using testing_support::contains;
 using testing_support::lines;
@@ -180,5 +180,5 @@ TEST(Resume, NoProgressLineWhenNotATerminal) {
   std::filesystem::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace test_resume
 }  // namespace tem

@@ -9,7 +9,7 @@
 #include "support/simulate.hpp"
 
 namespace tem {
-namespace {
+namespace test_scene_physics {
 
 using testing_support::load_scene;
 using testing_support::report;
@@ -143,5 +143,5 @@ TEST(PhysicsScene, PaperCoinAndTheCausesOfItsDefect) {
   EXPECT_TRUE(corners.pulls);                      // ...held by adhesion
 }
 
-}  // namespace
+}  // namespace test_scene_physics
 }  // namespace tem

@@ -18,7 +18,7 @@
 #include "io/scene_writer.hpp"
 
 namespace tem {
-namespace {
+namespace test_scene_reader {
 
 const std::string kScenes = std::string(TEM_SOURCE_DIR) + "/tests/scenes";
 
@@ -576,5 +576,5 @@ TEST(SceneReader, DuplicateKeyInsideAListNamesTheElement) {
   EXPECT_EQ(r.problems[0].path, "walls[1].point");
 }
 
-}  // namespace
+}  // namespace test_scene_reader
 }  // namespace tem

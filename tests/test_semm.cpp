@@ -11,7 +11,7 @@
 #include "simulation/step.hpp"
 
 namespace tem {
-namespace {
+namespace test_semm {
 
 BodyDef brick_body(const Vec3& position) {
   BodyDef b;
@@ -151,5 +151,5 @@ TEST(Semm, PaperSolveAdheresDefaultDoesNot) {
   EXPECT_EQ(semm[0].normal, 0);
 }
 
-}  // namespace
+}  // namespace test_semm
 }  // namespace tem

@@ -10,7 +10,7 @@
 #include "tem/simulation.hpp"
 
 namespace tem {
-namespace {
+namespace test_simulation_api {
 
 using testing_support::contains;
 using testing_support::run_tem;
@@ -196,5 +196,5 @@ TEST(SimulationApi, SceneBuiltInCode) {
   EXPECT_NEAR(sim.inertia_body(0)(0, 0), sim.mass(0) / 6, 1e-14);
 }
 
-}  // namespace
+}  // namespace test_simulation_api
 }  // namespace tem

@@ -21,7 +21,7 @@
 #include "world/state_hash.hpp"
 
 namespace tem {
-namespace {
+namespace test_sleep {
 
 using testing_support::box_on_floor;
 using testing_support::temp_path;
@@ -419,5 +419,5 @@ TEST(Sleep, SceneKeysAreChecked) {
   EXPECT_EQ(write_scene_text(off).find("sleep"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace test_sleep
 }  // namespace tem

@@ -22,7 +22,7 @@
 #include "tem/simulation.hpp"
 
 namespace tem {
-namespace {
+namespace test_substeps {
 
 using testing_support::report;
 using testing_support::run_tem;
@@ -261,5 +261,5 @@ TEST(SubSteps, RefusedWhereContactIsNotMadeBeforeOverlap) {
   }
 }
 
-}  // namespace
+}  // namespace test_substeps
 }  // namespace tem
