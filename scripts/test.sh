@@ -27,11 +27,17 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
 jobs=$(nproc)
+# Each phase's wall time is printed, so that a run's log says where CI's minutes went.
 for preset in ci sanitize; do
   echo "== $preset =="
+  start=$SECONDS
   cmake --preset "$preset" >/dev/null
   cmake --build --preset "$preset" -j "$jobs"
+  built=$SECONDS
   ctest --preset "$preset" -j "$jobs"
+  echo "== $preset: built in $((built - start)) s, tested in $((SECONDS - built)) s =="
 done
 echo "== fuzz =="
+start=$SECONDS
 bash scripts/fuzz.sh
+echo "== fuzz: built and run in $((SECONDS - start)) s; all of scripts/test.sh: $SECONDS s =="
