@@ -25,6 +25,7 @@
 #include "contact/contact_margins.hpp"
 #include "io/json_reader.hpp"
 #include "io/process_reader.hpp"
+#include "io/shape_type_names.hpp"
 
 namespace tem {
 namespace {
@@ -116,21 +117,6 @@ const KeyList kInletKeys = {"name", "region", "rate", "count", "start", "seed", 
 const KeyList kInletBodyKeys = {"shape", "density", "material", "scale", "angular_velocity"};
 // A fill larger than this is a typo, and would take minutes to place.
 constexpr int kMaxFillCount = 10'000'000;
-
-const std::vector<std::pair<std::string_view, ShapeType>> kShapeTypes = {
-    {"prism", ShapeType::prism},
-    {"ring", ShapeType::ring},
-    {"box", ShapeType::box},
-    {"convex", ShapeType::convex},
-    {"compound", ShapeType::compound},
-    {"mesh", ShapeType::mesh}};
-
-std::string_view shape_type_name(ShapeType type) {
-  for (const auto& [name, value] : kShapeTypes) {
-    if (value == type) return name;
-  }
-  return "?";
-}
 
 // Keys a shape of each type takes, besides `type` (and the pose keys of a compound's part).
 const KeyList& shape_keys(ShapeType type) {
@@ -590,12 +576,12 @@ class SceneReader {
     if (!r_.object(j, path)) return;
     std::optional<ShapeType> type;
     if (const Json* t = r_.need(j, path, "type")) {
-      type = r_.choice(*t, child(path, "type"), kShapeTypes);
+      type = r_.choice(*t, child(path, "type"), shape_type_names());
     }
 
     // Keys: those of this type, or of any type when the type is unknown.
     KeyList allowed = {"type"};
-    for (const auto& [name, value] : kShapeTypes) {
+    for (const auto& [name, value] : shape_type_names()) {
       if (type && value != *type) continue;
       for (std::string_view key : shape_keys(value)) {
         if (!contains(allowed, key)) allowed.push_back(key);
@@ -609,7 +595,7 @@ class SceneReader {
                "compound have their own)";
       }
       if (!type) return "";
-      for (const auto& [name, value] : kShapeTypes) {
+      for (const auto& [name, value] : shape_type_names()) {
         if (value != *type && contains(shape_keys(value), key)) {
           return "key '" + std::string(key) + "' does not apply to a " +
                  std::string(shape_type_name(*type)) + " shape (it takes " +

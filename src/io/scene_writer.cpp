@@ -9,6 +9,7 @@
 #include <string>
 
 #include "io/scene_reader.hpp"
+#include "io/shape_type_names.hpp"
 
 namespace tem {
 namespace {
@@ -79,24 +80,6 @@ const char* axis_name(Axis axis) {
   return "z";
 }
 
-const char* shape_type_name(ShapeType type) {
-  switch (type) {
-    case ShapeType::prism:
-      return "prism";
-    case ShapeType::ring:
-      return "ring";
-    case ShapeType::box:
-      return "box";
-    case ShapeType::convex:
-      return "convex";
-    case ShapeType::compound:
-      return "compound";
-    case ShapeType::mesh:
-      return "mesh";
-  }
-  return "box";
-}
-
 const char* contact_model_name(ContactModel model) {
   switch (model) {
     case ContactModel::semm:
@@ -112,7 +95,7 @@ const char* contact_model_name(ContactModel model) {
 // Only the keys of the shape's own type; a compound's parts also get their pose.
 Json shape_to_json(const ShapeDef& shape, bool is_part) {
   Json j;
-  j["type"] = shape_type_name(shape.type);
+  j["type"] = std::string(shape_type_name(shape.type));
   if (is_part) {
     j["position"] = vec3(shape.position);
     write_orientation(shape.rotation, shape.orientation_given, &j);

@@ -31,7 +31,7 @@
 namespace tem {
 namespace {
 
-constexpr Real kVolumeTolerance = 1e-12;
+constexpr Real kZeroVolume = 1e-12;  // of the bounding box diagonal cubed
 constexpr int kExamples = 3;  // places named per kind of defect
 // Enough to say how badly a mesh crosses itself, few enough to keep in memory.
 constexpr std::size_t kMaxCrossings = 100'000;
@@ -511,7 +511,7 @@ MeshCheck check_mesh(TriangleMesh& mesh) {
 
   std::vector<Surface> parts =
       surfaces(mesh, edges, scan, screen, box.isEmpty() ? Vec3(Vec3::Zero()) : Vec3(box.center()));
-  const Real zero_volume = kVolumeTolerance * diagonal * diagonal * diagonal;
+  const Real zero_volume = kZeroVolume * diagonal * diagonal * diagonal;
   int unsound = 0;
   for (const Surface& s : parts) {
     if (!s.sound) {
