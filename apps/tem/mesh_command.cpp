@@ -96,6 +96,9 @@ int mesh_command(const std::string& mesh_file, const std::string& cutting_name, 
         {"hausdorff_percent", hausdorff_percent},
         {"diagonal", figures.diagonal},
         {"merged_slivers", cut.merged_slivers},
+        {"reflex_edges", cut.reflex_edges},
+        {"parts", cut.parts},
+        {"recut_pieces", cut.recut_pieces},
         {"read_seconds", mesh->read_seconds},
         {"cut_seconds", cut.seconds},
         {"seconds", seconds}};
@@ -123,7 +126,15 @@ int mesh_command(const std::string& mesh_file, const std::string& cutting_name, 
     std::printf("  Hausdorff distance  %.4g (%.3g %% of the bounding-box diagonal)\n",
                 cut.hausdorff, hausdorff_percent);
   }
+  if (cutting == MeshCutting::exact)
+    std::printf("  reflex edges        %d (CGAL cut %s)\n", cut.reflex_edges,
+                cut.parts == 1 ? "the mesh whole"
+                               : ("the " + std::to_string(cut.parts) + " parts of the mesh one at a "
+                                  "time").c_str());
   if (cut.merged_slivers > 0) std::printf("  slivers merged      %d\n", cut.merged_slivers);
+  if (cut.recut_pieces > 0)
+    std::printf("  pieces re-cut       %d (into tetrahedra: no hull made a block of them)\n",
+                cut.recut_pieces);
   if (!out_file.empty())
     std::printf("  wrote %s (cell data 'block' = 1..%zu)\n", out_file.c_str(), blocks.size());
   std::cout.flush();

@@ -20,13 +20,28 @@ struct MeshDecomposition {
   Real over_coverage = 0;
   Real hausdorff = 0;
   int merged_slivers = 0;  // exact: thin pieces merged into a neighbour (or dropped, see docs)
+  int reflex_edges = 0;    // exact: edges where the surface turns inwards (CGAL cuts along each)
+  int parts = 1;           // exact: parts of the mesh that CGAL decomposed one at a time
+  int pieces = 0;          // exact: the convex pieces CGAL returned, before slivers and joins
+  int recut_pieces = 0;    // exact: pieces no hull made a block of, re-cut into tetrahedra
+  // exact: the volume the blocks gained (negative: lost) against CGAL's pieces, where corners
+  // bent by the mesh's rounding were left out and pieces too thin for a block dropped.
+  Real rounding_change = 0;
   double seconds = 0;
   std::vector<std::string> warnings;
 };
 
-// Blocks whose union is the mesh, from CGAL's Nef-polyhedron convex decomposition. Throws
-// MeshError when CGAL fails or its pieces cannot be made into valid blocks.
-MeshDecomposition exact_decomposition(const TriangleMesh& mesh);
+// CGAL's convex decomposition takes longer per reflex edge the more reflex edges a solid has
+// (docs/meshes.md: 12,946-face fandisk, over 400 s whole, 76 s in 256 parts), so a mesh with more
+// than this many is first cut, exactly, into parts with at most this many each.
+constexpr int kReflexEdgesPerPart = 64;
+
+// Blocks whose union is the mesh, from CGAL's Nef-polyhedron convex decomposition, of the whole
+// mesh or of the parts that exact cuts by axis-aligned planes make of it (at most
+// `reflex_edges_per_part` reflex edges each). Throws MeshError when CGAL fails or its pieces
+// cannot be made into valid blocks.
+MeshDecomposition exact_decomposition(const TriangleMesh& mesh,
+                                      int reflex_edges_per_part = kReflexEdgesPerPart);
 
 // At most `max_blocks` convex blocks, each the convex hull of the part of the mesh inside one
 // cell of a tree of cutting planes (so blocks never overlap and keep the mesh's holes).
