@@ -98,8 +98,8 @@ constexpr Real kReshapeFraction = 1e-14;
 // mesh's rounding (make_piece, rounded_union). Each change is counted, signed, and the final
 // check holds the blocks to the mesh's volume plus those changes, so that it keeps meaning that
 // CGAL's pieces fill the mesh however many pieces there are. In all, the changes come to at most
-// 3.7e-10 of the volume below 2,000 pieces, 1.1e-8 for 6-digit fandisk's 10,000 (docs/meshes.md);
-// above this fraction, the cut says so in a warning.
+// 3.7e-10 of the volume below 2,000 pieces, 9.9e-10 for 6-digit fandisk's 9,682
+// (docs/meshes.md); above this fraction, the cut says so in a warning.
 constexpr Real kRoundingFraction = 8e-10;
 // Corners are left out of a piece when they come within this factor of breaking one of Block's
 // checks: little above 1, so that as few as possible go, but clear of Block's own rounding.
@@ -111,6 +111,7 @@ constexpr Real kWeldFraction = 2e-9;
 // rounding of CGAL's exact vertices to double, far below any missing or doubled piece.
 constexpr Real kVolumeTolerance = 1e-9;
 static_assert(kRoundingFraction + kDroppedFraction < kVolumeTolerance);
+
 // One convex volume of the decomposition and the block made of it.
 struct Piece {
   PolyhedronDef def;                             // a valid block unless `defect` says why not
