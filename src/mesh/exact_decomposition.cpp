@@ -539,13 +539,11 @@ std::vector<Vec3> reflex_edge_midpoints(const Surface& surface) {
 // the surface only across edges and faces.
 class PartCutter {
  public:
-  PartCutter(const TriangleMesh& mesh, int per_part)
+  // `bounds`: the mesh's bounding box.
+  PartCutter(const TriangleMesh& mesh, const Eigen::AlignedBox<Real, 3>& bounds, int per_part)
       : per_part_(static_cast<size_t>(std::max(per_part, 1))) {
-    Eigen::AlignedBox<Real, 3> bounds;
-    for (const Vec3& p : mesh.vertices) {
-      bounds.extend(p);
+    for (const Vec3& p : mesh.vertices)
       for (int k = 0; k < 3; ++k) coordinates_[k].push_back(p[k]);
-    }
     for (auto& c : coordinates_) {
       std::sort(c.begin(), c.end());
       c.erase(std::unique(c.begin(), c.end()), c.end());
@@ -668,7 +666,7 @@ MeshDecomposition decompose(const TriangleMesh& mesh, int reflex_edges_per_part)
   std::vector<Vec3> reflex = reflex_edge_midpoints(surface);
   result.reflex_edges = static_cast<int>(reflex.size());
   result.parts = 0;
-  PartCutter(mesh, reflex_edges_per_part).cut(Nef(surface), std::move(reflex), decompose_part);
+  PartCutter(mesh, bounds, reflex_edges_per_part).cut(Nef(surface), std::move(reflex), decompose_part);
 
   result.pieces = static_cast<int>(pieces.size());
 
