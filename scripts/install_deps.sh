@@ -4,6 +4,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake
+  ninja-build            # CI's builds: keeps both cores busy across libraries (scripts/test.sh)
   libeigen3-dev          # vectors, matrices, small dense solves
   nlohmann-json3-dev     # scene files
   libcli11-dev           # command line

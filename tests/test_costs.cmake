@@ -7,7 +7,6 @@
 if(TEM_TESTS_SANITIZED)
   set(tem_test_costs
       SubSteps.ResumeAndThreadsGiveTheSameBitsWhileBodiesComeAndGo 151
-      Processes.DrumDriveTorqueBalancesTheBedsWeight 97
       Processes.ResumeAndThreadsGiveTheSameBytesWhileBodiesComeAndGo 74
       Processes.ApiCheckpointResumesThePopulation 42
       MeshApprox.ConvexMeshIsItsHull 37
