@@ -450,6 +450,26 @@ TEST(SceneWriter, RoundTripOfAnArbitraryRotation) {
   expect_scene_eq(original.scene, again.scene, 4e-16);
 }
 
+// A margin the scene gives (0: contact only after overlap) is written as given, with the pair
+// cache on or off: the writer once put "auto" over it whenever the cache was on, so a run's
+// scene.json ran differently from its scene and checkpoints of the two matched.
+TEST(SceneWriter, KeepsTheContactMarginGiven) {
+  for (const std::string margin : {"0", "0.05", "\"auto\""}) {
+    for (const std::string cache : {"true", "false"}) {
+      SCOPED_TRACE(margin + ", pair_cache " + cache);
+      const std::string text = R"({"contact": {"margin": )" + margin + R"(, "pair_cache": )" +
+                               cache + R"(}, "bodies": [{"name": "b", "position": [0, 0, 0],
+                               "shape": {"type": "box", "size": [1, 1, 1]}}]})";
+      const SceneReadResult first = read_scene_text(text, "margin.json");
+      ASSERT_TRUE(first.problems.empty());
+      const SceneReadResult again = read_scene_text(write_scene_text(first.scene), "written.json");
+      ASSERT_TRUE(again.problems.empty());
+      EXPECT_EQ(again.scene.contact.margin, first.scene.contact.margin);
+      EXPECT_EQ(again.scene.contact.pair_cache, first.scene.contact.pair_cache);
+    }
+  }
+}
+
 TEST(SceneWriter, WritesEulerAnglesWhenTheyReproduceTheRotation) {
   const SceneDef coin = read_good(std::string(TEM_SOURCE_DIR) + "/scenes/paper/coin.json");
   const auto j = scene_to_json(coin);

@@ -316,11 +316,11 @@ Json scene_to_json(const SceneDef& scene) {
                       {"solver", scene.contact.solver == ContactSolver::blocks ? "blocks" : "rows"}};
   if (scene.contact.margin)
     j["contact"]["margin"] = *scene.contact.margin;
+  else
+    j["contact"]["margin"] = "auto";
   // Written only where it is turned off: a scene of the default writes what it wrote before the
   // key existed, so that its checkpoints' fingerprints still match (checkpoint.hpp).
   if (!scene.contact.pair_cache) j["contact"]["pair_cache"] = false;
-  else
-    j["contact"]["margin"] = "auto";
   if (!scene.contact.pairs.empty()) {
     Json pairs = Json::array();
     for (const MaterialPairDef& p : scene.contact.pairs) {
