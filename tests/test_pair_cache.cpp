@@ -19,6 +19,7 @@
 #include "contact/pair_cache.hpp"
 #include "geometry/primitives.hpp"
 #include "io/checkpoint.hpp"
+#include "support/coin_column.hpp"
 #include "support/simulate.hpp"
 #include "support/tem_process.hpp"
 #include "tem/simulation.hpp"
@@ -30,39 +31,9 @@ using testing_support::report;
 using testing_support::simulate;
 using testing_support::temp_path;
 
-constexpr Real kRadius = 0.15, kThickness = 0.1;
-
-// `layers` hexagonal coins (r 0.15, h 0.1, density 1), each turned 7 degrees about the vertical
-// from the one below and 5 um above it, on the floor of a 1 x 1 cm box under earth gravity:
-// friction 0.3, tolerance 1e-3 and 20 sweeps as scenes/bench/coins_1000.json (tools/
-// tall_stack.py writes the same column).
-SceneDef coin_column(int layers, Real dt) {
-  SceneDef scene;
-  scene.gravity = Vec3(0, 0, -981);
-  scene.time_step = dt;
-  scene.contact.friction = 0.3;
-  scene.contact.tolerance = 1e-3;
-  scene.contact.max_sweeps = 20;
-  const Real top = 0.2 * layers;
-  for (const auto& [point, normal] :
-       {std::pair{Vec3(0, 0, 0), Vec3(0, 0, 1)}, std::pair{Vec3(1, 1, top), Vec3(0, 0, -1)},
-        std::pair{Vec3(0, 0, 0), Vec3(1, 0, 0)}, std::pair{Vec3(1, 1, top), Vec3(-1, 0, 0)},
-        std::pair{Vec3(0, 0, 0), Vec3(0, 1, 0)}, std::pair{Vec3(1, 1, top), Vec3(0, -1, 0)}})
-    scene.walls.push_back({point, normal});
-  for (int k = 0; k < layers; ++k) {
-    BodyDef coin;
-    coin.name = "c" + std::to_string(k);
-    coin.shape.type = ShapeType::prism;
-    coin.shape.sides = 6;
-    coin.shape.radius = kRadius;
-    coin.shape.height = kThickness;
-    coin.density = 1;
-    coin.position = Vec3(0.5, 0.5, 0.05 + 0.1005 * k);
-    coin.rotation = Eigen::AngleAxis<Real>(7 * k * std::numbers::pi / 180, Vec3::UnitZ()).matrix();
-    scene.bodies.push_back(coin);
-  }
-  return scene;
-}
+using testing_support::coin_column;
+using testing_support::kCoinRadius;
+using testing_support::kCoinThickness;
 
 // The fastest point of any coin (|v| + |omega| r) at any step after `after`, and the deepest
 // overlap over the run, as a fraction of the coin's thickness.
@@ -78,9 +49,10 @@ Rest settle(const SceneDef& scene, Real duration, Real after) {
   const auto watch = simulate(model, state, duration, [&](const State& s, const Workspace&) {
     if (s.time < after) return;
     for (const BodyState& b : s.bodies)
-      rest.creep = std::max(rest.creep, b.v.norm() + b.angular_velocity_world().norm() * kRadius);
+      rest.creep =
+          std::max(rest.creep, b.v.norm() + b.angular_velocity_world().norm() * kCoinRadius);
   });
-  rest.deepest = watch.deepest / kThickness;
+  rest.deepest = watch.deepest / kCoinThickness;
   for (const BodyState& b : state.bodies) rest.top = std::max(rest.top, b.x.z());
   return rest;
 }
@@ -138,10 +110,10 @@ TEST(PairCache, EntriesHoldOnlyNearTheirSearch) {
   const auto turned = [](Real angle) {
     return Eigen::AngleAxis<Real>(angle, Vec3(1, 2, 3).normalized()).matrix();
   };
-  EXPECT_TRUE(near_search(e, turned(0.019), Vec3(0, 0, 0.1), kRadius));
-  EXPECT_FALSE(near_search(e, turned(0.021), Vec3(0, 0, 0.1), kRadius));
-  EXPECT_TRUE(near_search(e, Mat3::Identity(), Vec3(0.0029, 0, 0.1), kRadius));
-  EXPECT_FALSE(near_search(e, Mat3::Identity(), Vec3(0.0031, 0, 0.1), kRadius));
+  EXPECT_TRUE(near_search(e, turned(0.019), Vec3(0, 0, 0.1), kCoinRadius));
+  EXPECT_FALSE(near_search(e, turned(0.021), Vec3(0, 0, 0.1), kCoinRadius));
+  EXPECT_TRUE(near_search(e, Mat3::Identity(), Vec3(0.0029, 0, 0.1), kCoinRadius));
+  EXPECT_FALSE(near_search(e, Mat3::Identity(), Vec3(0.0031, 0, 0.1), kCoinRadius));
   std::vector<CachedFeatures> cache(3, e);
   cache[0].body_a = 0, cache[0].body_b = 1;
   cache[1].body_a = 0, cache[1].body_b = 2;
@@ -162,7 +134,7 @@ TEST(PairCache, EntriesHoldOnlyNearTheirSearch) {
 // cached face still separates them, the whole search says the same (and it does so often
 // enough for the check to mean something).
 TEST(PairCache, ACachedSeparatingFaceNeverHidesAContact) {
-  const Block coin(regular_prism(6, kRadius, kThickness, Axis::z));
+  const Block coin(regular_prism(6, kCoinRadius, kCoinThickness, Axis::z));
   const Real margin = 0.02;
   std::mt19937_64 rng(11);
   std::normal_distribution<Real> normal;

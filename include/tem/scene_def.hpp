@@ -153,6 +153,11 @@ struct ContactDef {
   // default), 0 for none (contact only after overlap).
   std::optional<Real> margin;
   ContactSolver solver = ContactSolver::rows;
+  // The rows solver's sweeps with nonsmooth nonlinear conjugate gradients (semm_rows.cpp): each
+  // sweep's change taken as a gradient step and the impulses moved further along a direction
+  // that remembers the sweeps before, so that weight reaches the floor of a tall pile in fewer
+  // sweeps. false: plain projected Gauss-Seidel.
+  bool conjugate_gradients = false;
   // Sub-steps of a step (contact_margins.hpp, refreshed_patches.hpp): contacts are detected once per
   // step, then solved and integrated this many times at time_step / substeps, each sub-step
   // rebuilding the detected patches from their features. 1: one solve per detection, as before.

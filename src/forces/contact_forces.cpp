@@ -127,6 +127,7 @@ void compute_contact_forces(const Model& model, const State& state,
     settings.colour_sweeps = scene.contact.colour_sweeps;
     settings.time_step = dt;
     settings.sync = sync;
+    settings.conjugate_gradients = scene.contact.conjugate_gradients;
     // Slower than what gravity adds in two steps is resting contact, not an impact.
     settings.restitution_threshold = 2 * scene.gravity.norm() * dt;
     if (f.match_radius.size() != n_bodies) match_radii(model, f.match_radius);

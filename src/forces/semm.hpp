@@ -87,6 +87,8 @@ struct SolverSettings {
   // Whether the result is impulses whose energy is checked (false: the overlap correction's
   // move).
   bool energy_check = true;
+  // Nonsmooth nonlinear conjugate gradients over the sweeps (semm_rows.cpp, accelerate).
+  bool conjugate_gradients = false;
 };
 
 struct SolverReport {

@@ -304,10 +304,63 @@ void update_patch(Memory& m, int k, int still, SweepSize& size) {
   }
 }
 
+// The impulses that conjugate gradients move: every normal row's, then each friction row's
+// (t1, t2).
+void gather(const Memory& m, std::vector<Real>& x) {
+  const size_t rows = m.rows.size();
+  x.resize(rows + 2 * m.friction.size());
+  for (size_t i = 0; i < rows; ++i) x[i] = m.rows[i].impulse;
+  for (size_t j = 0; j < m.friction.size(); ++j) {
+    x[rows + 2 * j] = m.friction[j].t1;
+    x[rows + 2 * j + 1] = m.friction[j].t2;
+  }
+}
+
+// Patch k moved along beta times the search direction, kept feasible (normal impulses >= 0,
+// friction inside mu times the new normal total); the direction becomes the move made plus the
+// sweep's own step (`step`, the sweep's change of the impulses).
+void accelerate_patch(Memory& m, int k, int still, Real beta, const std::vector<Real>& step) {
+  Memory::FrictionRow& f = m.friction[k];
+  Real total = 0;
+  for (int i = f.first; i < f.last; ++i) {
+    Memory::NormalRow& r = m.rows[i];
+    const Real after = std::max<Real>(0, r.impulse + beta * m.direction[i]);
+    const Real d = after - r.impulse;
+    r.impulse = after;
+    total += after;
+    apply_normal(m, r, still, d);
+    m.direction[i] = d + step[i];
+  }
+  const size_t t = m.rows.size() + 2 * static_cast<size_t>(k);
+  if (f.mu > 0) {
+    Vec2 now(f.t1, f.t2), next = now + beta * Vec2(m.direction[t], m.direction[t + 1]);
+    const Real limit = f.mu * total, length = next.norm();
+    if (length > limit) next *= limit / length;
+    const Vec2 d = next - now;
+    apply_friction(m, f, still, Vec3(d.x(), d.y(), 0));
+    f.t1 = next.x();
+    f.t2 = next.y();
+    m.direction[t] = d.x() + step[t];
+    m.direction[t + 1] = d.y() + step[t + 1];
+  }
+}
+
 SolverReport sweeps(Memory& m, const std::vector<int>& colours, const SolverSettings& settings,
                     int still) {
   SolverReport report;
   m.sizes.resize(static_cast<size_t>(max_threads()));
+  // Nonsmooth nonlinear conjugate gradients (Silcowitz, Niebe and Erleben 2010): each sweep's
+  // change of the impulses is taken as the negative gradient, and the impulses move further
+  // along a direction that remembers the earlier sweeps' (Fletcher-Reeves beta, restarted when
+  // the step grows). A column's weight then reaches the floor in far fewer sweeps than
+  // Gauss-Seidel's one layer per sweep.
+  const bool cg = settings.conjugate_gradients;
+  Real last_gradient = 0;
+  if (cg) {
+    gather(m, m.before);
+    m.direction.assign(m.before.size(), 0);
+  }
+  std::vector<Real>& step = m.before;
   for (report.sweeps = 1; report.sweeps <= settings.max_sweeps; ++report.sweeps) {
     std::fill(m.sizes.begin(), m.sizes.end(), SweepSize{});
     by_colour(colours, m.sizes,
@@ -322,6 +375,33 @@ SolverReport sweeps(Memory& m, const std::vector<int>& colours, const SolverSett
     }
     report.change = total.largest > 0 ? total.change / total.largest : 0;
     if (report.change <= settings.tolerance) return report;
+    if (!cg || report.sweeps == settings.max_sweeps) continue;
+    // step = after - before, in place; its squared length, summed in one order.
+    const size_t rows = m.rows.size();
+    Real gradient = 0;
+    for (size_t i = 0; i < rows; ++i) {
+      step[i] = m.rows[i].impulse - step[i];
+      gradient += step[i] * step[i];
+    }
+    for (size_t j = 0; j < m.friction.size(); ++j) {
+      step[rows + 2 * j] = m.friction[j].t1 - step[rows + 2 * j];
+      step[rows + 2 * j + 1] = m.friction[j].t2 - step[rows + 2 * j + 1];
+      gradient += step[rows + 2 * j] * step[rows + 2 * j] +
+                  step[rows + 2 * j + 1] * step[rows + 2 * j + 1];
+    }
+    if (settings.sync) gradient = settings.sync->sum(gradient);
+    const Real beta = last_gradient > 0 ? gradient / last_gradient : -1;
+    last_gradient = gradient;
+    if (beta < 0) {
+      m.direction = step;  // the first sweep: its own step
+    } else if (beta < 1) {
+      by_colour(colours, m.sizes,
+                [&](int k, SweepSize&) { accelerate_patch(m, k, still, beta, step); });
+      if (settings.sync) settings.sync->average(m.velocity, m.angular_velocity);
+    } else {
+      std::fill(m.direction.begin(), m.direction.end(), 0);  // restart
+    }
+    gather(m, m.before);
   }
   report.sweeps = settings.max_sweeps;
   report.converged = false;

@@ -100,7 +100,7 @@ const KeyList kContactKeys = {"model",     "friction",   "restitution",
                               "points",    "law",        "tangential_stiffness",
                               "tolerance", "max_sweeps", "sweep_order",
                               "margin",    "solver",     "pairs",
-                              "substeps",  "pair_cache"};
+                              "substeps",  "pair_cache", "acceleration"};
 const KeyList kContainerKeys = {"min", "max", "material"};
 const KeyList kRegionKeys = {"min", "max"};
 const KeyList kWallKeys = {"point", "normal", "material", "removed_at"};
@@ -165,6 +165,13 @@ class SceneReader {
               "must be 1 unless contact is made before overlap (model \"semm\" with face "
               "normals, corner points, the default integrator and a margin other than 0), got " +
                   std::to_string(scene->contact.substeps));
+    // Conjugate gradients accelerate the rows solver's sweeps; the other solvers have none.
+    if (scene->contact.conjugate_gradients &&
+        (scene->contact.model != ContactModel::semm ||
+         scene->contact.solver != ContactSolver::rows))
+      r_.fail("contact.acceleration",
+              "\"conjugate_gradients\" needs model \"semm\" with solver \"rows\" (it "
+              "accelerates that solver's sweeps)");
     if (const Json* j = Reader::get(root, "container")) {
       ContainerDef container;
       if (read_container(*j, "container", &container)) scene->container = container;
@@ -295,6 +302,12 @@ class SceneReader {
               *v, child(path, "solver"),
               {{"rows", ContactSolver::rows}, {"blocks", ContactSolver::blocks}})) {
         contact->solver = *solver;
+      }
+    }
+    if (const Json* a = Reader::get(j, "acceleration")) {
+      if (auto cg = r_.choice<bool>(*a, child(path, "acceleration"),
+                                    {{"none", false}, {"conjugate_gradients", true}})) {
+        contact->conjugate_gradients = *cg;
       }
     }
     if (const Json* p = Reader::get(j, "pairs"))

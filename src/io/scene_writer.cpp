@@ -318,9 +318,10 @@ Json scene_to_json(const SceneDef& scene) {
     j["contact"]["margin"] = *scene.contact.margin;
   else
     j["contact"]["margin"] = "auto";
-  // Written only where it is turned off: a scene of the default writes what it wrote before the
-  // key existed, so that its checkpoints' fingerprints still match (checkpoint.hpp).
+  // Written only where they are not the default: a scene of the defaults writes what it wrote
+  // before the keys existed, so that its checkpoints' fingerprints still match (checkpoint.hpp).
   if (!scene.contact.pair_cache) j["contact"]["pair_cache"] = false;
+  if (scene.contact.conjugate_gradients) j["contact"]["acceleration"] = "conjugate_gradients";
   if (!scene.contact.pairs.empty()) {
     Json pairs = Json::array();
     for (const MaterialPairDef& p : scene.contact.pairs) {
