@@ -155,8 +155,9 @@ struct ContactDef {
   ContactSolver solver = ContactSolver::rows;
   // The rows solver's sweeps with nonsmooth nonlinear conjugate gradients (semm_rows.cpp): each
   // sweep's change taken as a gradient step and the impulses moved further along a direction
-  // that remembers the sweeps before, so that weight reaches the floor of a tall pile in fewer
-  // sweeps. false: plain projected Gauss-Seidel.
+  // that remembers the sweeps before, so that weight reaches the floor of a tall stack in fewer
+  // sweeps (in piles, with friction, it takes more: docs/benchmarks.md). false: plain projected
+  // Gauss-Seidel.
   bool conjugate_gradients = false;
   // Sub-steps of a step (contact_margins.hpp, refreshed_patches.hpp): contacts are detected once per
   // step, then solved and integrated this many times at time_step / substeps, each sub-step
