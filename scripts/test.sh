@@ -49,7 +49,17 @@
 # next, so one core idled at every library's last file (CGAL's exact decomposition alone is
 # 96 s). The ci build from scratch, same tree, one after the other on the 2-core machine
 # (2026-11-27): 504 s with Make, 426 s with Ninja. The release preset, which users build, keeps
-# CMake's default generator. The machine's speed drifts over a day: the ci tests, which no
+# CMake's default generator. Clean-clone `.ci/run`, the session before Ninja and after it (with
+# the drum's torque balance out of the sanitize tests and the sub-steps resume test lighter):
+#
+#   | phase            | before  | after   |
+#   |------------------|---------|---------|
+#   | ci build         | 516 s   | 435 s   |
+#   | ci tests         | 210 s   | 206 s   |
+#   | sanitize build   | 682 s   | 642 s   |
+#   | sanitize tests   | 392 s   | 298 s   |
+#   | fuzz (build+run) | 152 s   | 150 s   |
+#   | all              | 1,952 s | 1,731 s | The machine's speed drifts over a day: the ci tests, which no
 # change here touched, summed 320 and 311 test-seconds in the two runs. A step between them (the
 # tests' unity build, the costs, CGAL without UBSan, the fuzzers side by side) took 1,871 s.
 set -euo pipefail
