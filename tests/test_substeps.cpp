@@ -223,8 +223,9 @@ TEST(SubSteps, EnergyLessDrivenWorkNeverRisesOnABelt) {
 // Grains on a gate that opens, an outlet that takes them, with three sub-steps: a checkpoint
 // taken mid-run resumes bit for bit, and two threads give the bytes of one. The one-thread run
 // is the API's own, recorded as `tem run` writes (SimulationApi.RecordingWritesWhatTemRunWrites),
-// so that the run of the resume check is also the threads check's reference: the test's longest
-// under the sanitizers (151 s of CI's 392 s of sanitize tests, 2026-11-27) by a third less.
+// so that the run of the resume check is also the threads check's reference. Under the
+// sanitizers, the test's longest, it took 151 s with a third run and 119 s without (CI's clean
+// runs, 2026-11-27).
 TEST(SubSteps, ResumeAndThreadsGiveTheSameBitsWhileBodiesComeAndGo) {
   // To 0.2 s: past the gate's opening at 0.15 s, grains falling to the outlet.
   const std::string scene = with_substeps("gate_outlet.json", 3, "0.2");

@@ -87,7 +87,7 @@ struct SolverSettings {
   // Whether the result is impulses whose energy is checked (false: the overlap correction's
   // move).
   bool energy_check = true;
-  // Nonsmooth nonlinear conjugate gradients over the sweeps (semm_rows.cpp, accelerate).
+  // Nonsmooth nonlinear conjugate gradients over the sweeps (semm_rows.cpp: sweeps).
   bool conjugate_gradients = false;
 };
 

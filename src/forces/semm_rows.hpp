@@ -74,7 +74,7 @@ struct RowSolverMemory {
   std::vector<Vec3> free_velocity, free_angular_velocity;  // energy check (semm_rows.cpp)
   std::vector<BodyResponse> now;  // the bodies after stopped sweeps (semm_rows.cpp)
   Colouring colouring;            // the sweeps' order, its vectors reused step after step
-  // Conjugate gradients (semm_rows.cpp, accelerate): the impulses before the sweep, its step,
+  // Conjugate gradients (semm_rows.cpp: sweeps): the impulses before the sweep, its step,
   // and the search direction, normal rows first, then each friction row's (t1, t2).
   std::vector<Real> before, direction;
 };
