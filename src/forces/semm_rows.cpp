@@ -182,6 +182,13 @@ inline Vec2 rolling_velocity(const Memory::RollingRow& r, const std::vector<Vec3
   return Vec2(r.tangent1.dot(dw), r.tangent2.dot(dw));
 }
 
+// Scales v into the disc of the given radius (a friction cone's or a rolling limit's), if it is
+// outside.
+inline void into_disc(Vec2& v, Real radius) {
+  const Real length = v.norm();
+  if (length > radius) v *= radius / length;
+}
+
 // Adds a linear impulse j (world) at a row's arm on slot `s`, turning it by `turn`.
 inline void push(Memory& m, int s, int still, const Vec3& j, const Vec3& turn) {
   // A driven body's velocity is not the impulses' to change (and, shared by the patches of one
@@ -268,8 +275,7 @@ void update_patch(Memory& m, int k, int still, SweepSize& size) {
     const Vec2 now(f.t1, f.t2), start = f.start_slip.head<2>();
     Vec2 t = now - f.inverse_k_slip * u.head<2>();
     if (t.dot(start) > 0) t = now - f.inverse_k_slip * (u.head<2>() + start);
-    const Real limit = mu * total, length = t.norm();
-    if (length > limit) t *= limit / length;
+    into_disc(t, mu * total);
     apply_friction(m, f, still, Vec3(t.x() - f.t1, t.y() - f.t2, 0));
     f.t1 = t.x();
     f.t2 = t.y();
@@ -294,8 +300,7 @@ void update_patch(Memory& m, int k, int still, SweepSize& size) {
     const Vec2 u = rolling_velocity(r, m.angular_velocity), now(r.r1, r.r2);
     Vec2 h = now - r.inverse_k * u;
     if (h.dot(r.start) > 0) h = now - r.inverse_k * (u + r.start);
-    const Real limit = r.limit * total, length = h.norm();
-    if (length > limit) h *= limit / length;
+    into_disc(h, r.limit * total);
     apply_rolling(m, r, still, h - now);
     r.r1 = h.x();
     r.r2 = h.y();
@@ -334,8 +339,7 @@ void accelerate_patch(Memory& m, int k, int still, Real beta, const std::vector<
   const size_t t = m.rows.size() + 2 * static_cast<size_t>(k);
   if (f.mu > 0) {
     Vec2 now(f.t1, f.t2), next = now + beta * Vec2(m.direction[t], m.direction[t + 1]);
-    const Real limit = f.mu * total, length = next.norm();
-    if (length > limit) next *= limit / length;
+    into_disc(next, f.mu * total);
     const Vec2 d = next - now;
     apply_friction(m, f, still, Vec3(d.x(), d.y(), 0));
     f.t1 = next.x();

@@ -666,7 +666,8 @@ MeshDecomposition decompose(const TriangleMesh& mesh, int reflex_edges_per_part)
   std::vector<Vec3> reflex = reflex_edge_midpoints(surface);
   result.reflex_edges = static_cast<int>(reflex.size());
   result.parts = 0;
-  PartCutter(mesh, bounds, reflex_edges_per_part).cut(Nef(surface), std::move(reflex), decompose_part);
+  PartCutter(mesh, bounds, reflex_edges_per_part)
+      .cut(Nef(surface), std::move(reflex), decompose_part);
 
   result.pieces = static_cast<int>(pieces.size());
 
