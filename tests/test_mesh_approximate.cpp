@@ -10,7 +10,9 @@
 #include "mesh/mesh_decomposition.hpp"
 #include "mesh/mesh_check.hpp"
 #include "mesh/mesh_distance.hpp"
+#include "mesh/part_components.hpp"
 #include "mesh/plane_cut.hpp"
+#include "geometry/primitives.hpp"
 #include "support/mesh_shapes.hpp"
 #include "support/parallel.hpp"
 #include "support/scan_meshes.hpp"
@@ -272,6 +274,80 @@ TEST(MeshApproxCut, CornersInsideTheSolidAndVolumes) {
   auto c = cut_part(b[1], {Vec3(0.7, -0.2, 1).normalized(), 0.02}, true);
   EXPECT_NEAR(a[1].volume + b[0].volume + c[0].volume + c[1].volume, torus.volume,
               1e-12 * torus.volume);
+}
+
+// Unit cubes [x, x+1] x [y, y+1] x [0, 1] joined face to face into one surface.
+TriangleMesh cubes_mesh(const std::vector<std::array<int, 2>>& cells, const std::string& name) {
+  std::vector<PolyhedronDef> cubes;
+  for (const auto& [x, y] : cells) {
+    PolyhedronDef cube = box(Vec3::Ones());
+    for (Vec3& p : cube.points) p += Vec3(x + 0.5, y + 0.5, 0.5);
+    cubes.push_back(std::move(cube));
+  }
+  return testing_support::union_surface(cubes, name);
+}
+
+TEST(MeshApproxCut, PiecesOfACutPart) {
+  // A slab across the torus holds two arcs of its tube, apart.
+  const MeshPart torus = whole_mesh_part(testing_support::torus_mesh(1, 0.3, 48, 24), Vec3::Zero());
+  const MeshPart slab =
+      cut_part(cut_part(torus, {Vec3::UnitX(), 0.5}, true)[0], {-Vec3::UnitX(), 0.5}, true)[0];
+  const auto arcs = connected_components(slab);
+  ASSERT_EQ(arcs.size(), 2u);
+  EXPECT_NEAR(arcs[0].volume + arcs[1].volume, slab.volume, 1e-14);
+  EXPECT_NEAR(arcs[0].volume, arcs[1].volume, 1e-12);  // the torus is symmetric in y
+  EXPECT_NEAR(arcs[0].volume, part_volume(arcs[0]), 1e-15);
+  EXPECT_TRUE(hulls_apart(arcs[0].points, arcs[1].points, 1e-6));
+  EXPECT_EQ(separate_groups(slab, 1e-3 * slab.volume, 1e-6).size(), 2u);
+  // Each arc's corners are its own: together they are the slab's.
+  EXPECT_EQ(arcs[0].points.size() + arcs[1].points.size(), slab.points.size());
+
+  // A slab across the holed cube's hole falls into two bars of 0.6 x 1 x 3 ...
+  const MeshPart cube = whole_mesh_part(testing_support::holed_cube_mesh(), Vec3::Zero());
+  const MeshPart across =
+      cut_part(cut_part(cube, {Vec3::UnitX(), 1.8}, true)[0], {-Vec3::UnitX(), -1.2}, true)[0];
+  const auto bars = connected_components(across);
+  ASSERT_EQ(bars.size(), 2u);
+  for (const MeshPart& bar : bars) EXPECT_NEAR(bar.volume, 1.8, 1e-14);
+  // ... while a slab along it is one ring: its inner and outer walls meet only across the caps,
+  // where the hole's loop lies inside the outer one.
+  const MeshPart ring =
+      cut_part(cut_part(cube, {Vec3::UnitZ(), 2}, true)[0], {-Vec3::UnitZ(), -1}, true)[0];
+  EXPECT_NEAR(ring.volume, 8, 1e-14);
+  ASSERT_EQ(connected_components(ring).size(), 1u);
+
+  // Hulls that pass through each other are not apart, nor are hulls that touch.
+  const std::vector<Vec3> a{{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, 2}};
+  std::vector<Vec3> b = a;
+  for (Vec3& p : b) p += Vec3(0.5, 0.5, 0.5);
+  EXPECT_FALSE(hulls_apart(a, b, 1e-9));
+  for (Vec3& p : b) p += Vec3(-0.5, -0.5, 1.5);  // b's base on a's apex
+  EXPECT_FALSE(hulls_apart(a, b, 1e-9));
+  for (Vec3& p : b) p += Vec3(0, 0, 1e-3);
+  EXPECT_TRUE(hulls_apart(a, b, 1e-9));
+}
+
+TEST(MeshApprox, PiecesThatACutLeavesBecomeBlocks) {
+  // A U with legs two cubes long: cut at the top of its base, the upper side falls into the two
+  // legs, three boxes with nothing over.
+  const TriangleMesh u = cubes_mesh({{0, 0}, {1, 0}, {2, 0}, {0, 1}, {2, 1}, {0, 2}, {2, 2}}, "U");
+  for (int max_blocks : {3, 5}) {
+    const MeshDecomposition d = approximate_decomposition(u, max_blocks);
+    EXPECT_EQ(d.blocks.size(), 3u);
+    EXPECT_NEAR(d.mesh_volume, 7, 1e-12);
+    EXPECT_NEAR(d.over_coverage, 0, 1e-12);
+    expect_valid_and_disjoint(d, mesh_size(u));
+  }
+
+  // Shells apart start as a block each; with one block allowed, one hull covers both.
+  const TriangleMesh shells = cubes_mesh({{0, 0}, {2, 0}, {1, 3}}, "three cubes");
+  const MeshDecomposition apart = approximate_decomposition(shells, 3);
+  EXPECT_EQ(apart.blocks.size(), 3u);
+  EXPECT_NEAR(apart.over_coverage, 0, 1e-12);
+  expect_valid_and_disjoint(apart, mesh_size(shells));
+  const MeshDecomposition one = approximate_decomposition(shells, 1);
+  ASSERT_EQ(one.blocks.size(), 1u);
+  EXPECT_GT(one.over_coverage, 1.0);  // the hull of the three spans the gaps between them
 }
 
 }  // namespace test_mesh_approximate

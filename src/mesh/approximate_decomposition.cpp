@@ -23,10 +23,13 @@
 //     kSmallestSide of the part's volume, else the next best candidate: slivers and degenerate
 //     pieces are never made (as if merged back into their neighbour in the tree), so none is
 //     dropped and the blocks cover the mesh;
+//   - a side that falls apart (the legs below a waist) gives a child for each piece whose hull
+//     is apart from the others' (part_components.hpp), as CoACD does, when max_blocks leaves
+//     room; a mesh of several shells starts so. A node then has more than two children;
 //   - cutting stops at max_blocks, or when every part's concavity is below kConcavityFraction
 //     of the mesh's volume and its distance below kDistanceGoal;
-//   - then an improvement pass: two sibling leaves whose parent's hull adds least are merged
-//     back and the block spent on the leaf whose best cut gains more, while the sum of the
+//   - then an improvement pass: the sibling leaves whose parent's hull adds least are merged
+//     back and the blocks spent on the leaf whose best cut gains more, while the sum of the
 //     hulls' volumes drops (so it ends) and no block strays over kDistanceGoal that did not.
 // Each candidate is scored on its own and the best taken in a fixed order, so the blocks are
 // the same, to the bit, with any number of threads.
@@ -46,6 +49,7 @@
 #include "mesh/hull_polyhedron.hpp"
 #include "mesh/mesh_decomposition.hpp"
 #include "mesh/mesh_distance.hpp"
+#include "mesh/part_components.hpp"
 #include "mesh/plane_cut.hpp"
 #include "support/parallel.hpp"
 
@@ -91,8 +95,9 @@ struct Leaf {
 };
 
 // A leaf's best cut: its children, and what it gains (its hull's volume less the children's).
+// A side that the cut leaves in pieces whose hulls are apart gives a child per piece.
 struct Split {
-  std::array<Leaf, 2> children;
+  std::vector<Leaf> children;
   Real gain = 0;
 };
 
@@ -109,6 +114,7 @@ struct Candidate {
 // What the cutter needs beside the part: the mesh's distance field, for cutting by distance.
 struct Context {
   const MeshDistance* distance;
+  int room;           // the most children a split may have (the blocks left, plus one)
   Real precision;     // of distances, and the tie between two of them
   Real tie;           // between two volumes
   bool for_distance;  // this split aims at the distance of the part's block outside the mesh
@@ -167,7 +173,8 @@ void score(const MeshPart& part, Candidate& candidate, const Context& context) {
     if (!(side.volume >= kSmallestSide * part.volume)) return;
   for (int s = 0; s < 2; ++s) candidate.hull_volume[s] = hull_volume(sides[s].points);
   candidate.score = candidate.hull_volume[0] + candidate.hull_volume[1] -
-                    kLookaheadWeight * (lookahead_gain(sides[0].points) + lookahead_gain(sides[1].points));
+                    kLookaheadWeight * (lookahead_gain(sides[0].points) +
+                                        lookahead_gain(sides[1].points));
   candidate.worst = std::max(candidate.hull_volume[0] - sides[0].volume,
                              candidate.hull_volume[1] - sides[1].volume);
   if (context.for_distance)
@@ -229,7 +236,22 @@ void tilt_best(const MeshPart& part, std::vector<Candidate>& candidates, const C
   }
 }
 
-// The leaf's two children by the best candidate plane whose sides both make valid blocks.
+// A leaf for each part, or nothing if some part's hull is no valid block.
+std::optional<std::vector<Leaf>> leaves_of(std::vector<MeshPart> parts, const Context& context) {
+  std::vector<Leaf> leaves;
+  for (MeshPart& part : parts) {
+    auto block = hull_block(part.points, kWeld * radius_about_mean(part.points));
+    if (!block) return std::nullopt;
+    const Real volume = hull_volume(part.points);
+    leaves.push_back({std::move(part), std::move(*block), volume});
+  }
+  for (Leaf& leaf : leaves)
+    leaf.distance = largest_outside_distance(*context.distance, {leaf.block}, context.precision);
+  return leaves;
+}
+
+// The leaf's children by the best candidate plane whose sides make valid blocks: a child for
+// each side, or for each of a side's pieces whose hulls are apart when there is room for them.
 std::optional<Split> split(const Leaf& leaf, Context context) {
   std::vector<Candidate> candidates;
   for (const Vec3& direction : cut_directions(leaf.part))
@@ -255,23 +277,23 @@ std::optional<Split> split(const Leaf& leaf, Context context) {
     score_all(leaf.part, candidates, first, context);
   }
   tilt_best(leaf.part, candidates, context);
+  const Real gap = kWeld * radius_about_mean(leaf.part.points);
   for (int best; (best = best_untried(candidates, context)) >= 0;) {
     Candidate& chosen = candidates[best];
     chosen.tried = true;
     auto sides = cut_part(leaf.part, chosen.plane, true);
-    std::array<Leaf, 2> children;
-    bool valid = true;
-    for (int s = 0; s < 2 && valid; ++s) {
-      auto block = hull_block(sides[s].points, kWeld * radius_about_mean(sides[s].points));
-      if (!block) valid = false;
-      else children[s] = {std::move(sides[s]), std::move(*block), chosen.hull_volume[s]};
-    }
-    if (!valid) continue;
-    for (Leaf& child : children)
-      child.distance =
-          largest_outside_distance(*context.distance, {child.block}, context.precision);
-    return Split{std::move(children),
-                 leaf.hull_volume - chosen.hull_volume[0] - chosen.hull_volume[1]};
+    std::vector<MeshPart> pieces;
+    for (const MeshPart& side : sides)
+      for (MeshPart& group : separate_groups(side, kSmallestSide * leaf.part.volume, gap))
+        pieces.push_back(std::move(group));
+    auto children = pieces.size() <= static_cast<size_t>(context.room)
+                        ? leaves_of(std::move(pieces), context)
+                        : std::nullopt;
+    if (!children) children = leaves_of({std::move(sides[0]), std::move(sides[1])}, context);
+    if (!children) continue;
+    Real gain = leaf.hull_volume;
+    for (const Leaf& child : *children) gain -= child.hull_volume;
+    return Split{std::move(*children), gain};
   }
   return std::nullopt;
 }
@@ -312,18 +334,19 @@ MeshDecomposition approximate_decomposition(const TriangleMesh& mesh, int max_bl
   for (Vec3& v : shifted.vertices) v -= origin;
   const MeshDistance distance(shifted);
   const Real diagonal = (hi - lo).norm();
-  Context context{&distance, kDistancePrecision * diagonal, 1e-9 * result.mesh_volume, false};
+  Context context{&distance, 2, kDistancePrecision * diagonal, 1e-9 * result.mesh_volume,
+                  false};
   root.distance = largest_outside_distance(distance, {root.block}, context.precision);
 
   // The tree: a node is a leaf while it has no children. Leaves keep their best cut once found.
   struct Node {
     Leaf leaf;
     int parent = -1;
-    std::array<int, 2> child{-1, -1};
+    std::vector<int> children;
     std::optional<Split> next;
     bool next_known = false;
     bool alive = true;
-    bool is_leaf() const { return alive && child[0] < 0; }
+    bool is_leaf() const { return alive && children.empty(); }
   };
   std::vector<Node> nodes(1);
   nodes[0].leaf = std::move(root);
@@ -331,72 +354,96 @@ MeshDecomposition approximate_decomposition(const TriangleMesh& mesh, int max_bl
   const Real enough = kConcavityFraction * result.mesh_volume;
   const Real distance_goal = kDistanceGoal * diagonal;
 
-  auto known_split = [&](int n) -> std::optional<Split>& {
-    if (!nodes[n].next_known) {
+  // Leaf n's best cut, with at most `room` children (found again if the one known has more).
+  auto known_split = [&](int n, int room) -> std::optional<Split>& {
+    Node& node = nodes[n];
+    if (!node.next_known || (node.next && static_cast<int>(node.next->children.size()) > room)) {
       context.for_distance = false;
-      nodes[n].next = split(nodes[n].leaf, context);
-      nodes[n].next_known = true;
-      if (!nodes[n].next) nodes[n].leaf.final = true;
+      context.room = room;
+      node.next = split(node.leaf, context);
+      node.next_known = true;
+      if (!node.next) node.leaf.final = true;
     }
-    return nodes[n].next;
+    return node.next;
   };
   // Replaces leaf n by its children (the cut found in `cut`).
   auto apply = [&](int n, Split cut) {
-    for (int s = 0; s < 2; ++s) {
+    for (Leaf& leaf : cut.children) {
       Node child;
-      child.leaf = std::move(cut.children[s]);
+      child.leaf = std::move(leaf);
       child.parent = n;
-      nodes[n].child[s] = static_cast<int>(nodes.size());
+      nodes[n].children.push_back(static_cast<int>(nodes.size()));
       nodes.push_back(std::move(child));
     }
+    leaf_count += static_cast<int>(nodes[n].children.size()) - 1;
     nodes[n].next.reset();
     nodes[n].next_known = false;
-    ++leaf_count;
   };
 
-  while (leaf_count < max_blocks) {
-    int worst = -1;
-    for (size_t i = 0; i < nodes.size(); ++i)
-      if (nodes[i].is_leaf() && !nodes[i].leaf.final && nodes[i].leaf.distance > distance_goal &&
-          (worst < 0 || nodes[i].leaf.distance > nodes[worst].leaf.distance))
-        worst = static_cast<int>(i);
-    if (worst >= 0) {
-      context.for_distance = true;
-      auto cut = split(nodes[worst].leaf, context);
-      if (cut) apply(worst, std::move(*cut));
-      else nodes[worst].leaf.final = true;
-      continue;
-    }
-    for (size_t i = 0; i < nodes.size(); ++i) {
-      const Leaf& leaf = nodes[i].leaf;
-      if (nodes[i].is_leaf() && !leaf.final && leaf.concavity() > enough &&
-          (worst < 0 || leaf.concavity() > nodes[worst].leaf.concavity()))
-        worst = static_cast<int>(i);
-    }
-    if (worst < 0) break;
-    auto& cut = known_split(worst);
-    if (cut) apply(worst, std::move(*cut));
+  // A mesh of several shells whose hulls are apart starts as a block for each, when it may.
+  {
+    const Real gap = kWeld * radius_about_mean(nodes[0].leaf.part.points);
+    auto shells = separate_groups(nodes[0].leaf.part, kSmallestSide * result.mesh_volume, gap);
+    if (shells.size() > 1 && static_cast<int>(shells.size()) <= max_blocks)
+      if (auto children = leaves_of(std::move(shells), context)) {
+        Split whole{std::move(*children), nodes[0].leaf.hull_volume};
+        for (const Leaf& child : whole.children) whole.gain -= child.hull_volume;
+        apply(0, std::move(whole));
+      }
   }
 
-  // Improvement: merge the two leaves whose parent's hull adds least and spend the block on
-  // the leaf whose cut gains more, while that lowers the sum of the hulls' volumes (so it ends).
+  // Cuts while blocks are left: a block that strays too far outside first, then concavity.
+  auto grow = [&] {
+    while (leaf_count < max_blocks) {
+      const int room = max_blocks - leaf_count + 1;
+      int worst = -1;
+      for (size_t i = 0; i < nodes.size(); ++i)
+        if (nodes[i].is_leaf() && !nodes[i].leaf.final &&
+            nodes[i].leaf.distance > distance_goal &&
+            (worst < 0 || nodes[i].leaf.distance > nodes[worst].leaf.distance))
+          worst = static_cast<int>(i);
+      if (worst >= 0) {
+        context.for_distance = true;
+        context.room = room;
+        auto cut = split(nodes[worst].leaf, context);
+        if (cut) apply(worst, std::move(*cut));
+        else nodes[worst].leaf.final = true;
+        continue;
+      }
+      for (size_t i = 0; i < nodes.size(); ++i) {
+        const Leaf& leaf = nodes[i].leaf;
+        if (nodes[i].is_leaf() && !leaf.final && leaf.concavity() > enough &&
+            (worst < 0 || leaf.concavity() > nodes[worst].leaf.concavity()))
+          worst = static_cast<int>(i);
+      }
+      if (worst < 0) break;
+      auto& cut = known_split(worst, room);
+      if (cut) apply(worst, std::move(*cut));
+    }
+  };
+  grow();
+
+  // Improvement: merge the leaves of the node whose hull adds least over theirs and spend the
+  // blocks freed on the leaf whose cut gains more, while that lowers the sum of the hulls'
+  // volumes (so it ends); blocks still left go to further cuts.
   for (int round = 0; round < max_blocks; ++round) {
     int merge = -1;
     Real cost = 0;
     for (size_t i = 0; i < nodes.size(); ++i) {
       const Node& node = nodes[i];
-      if (!node.alive || node.child[0] < 0 || !nodes[node.child[0]].is_leaf() ||
-          !nodes[node.child[1]].is_leaf())
+      if (!node.alive || node.children.empty() || node.leaf.distance > distance_goal ||
+          !std::all_of(node.children.begin(), node.children.end(),
+                       [&](int c) { return nodes[c].is_leaf(); }))
         continue;
-      if (node.leaf.distance > distance_goal) continue;
-      const Real c = node.leaf.hull_volume - nodes[node.child[0]].leaf.hull_volume -
-                     nodes[node.child[1]].leaf.hull_volume;
+      Real c = node.leaf.hull_volume;
+      for (int child : node.children) c -= nodes[child].leaf.hull_volume;
       if (merge < 0 || c < cost) {
         merge = static_cast<int>(i);
         cost = c;
       }
     }
     if (merge < 0) break;
+    const int room = max_blocks - leaf_count + static_cast<int>(nodes[merge].children.size());
     // A cut gains at most the leaf's concavity (each child's hull holds the child), so leaves
     // are looked at by falling concavity until none can beat the best gain found: cuts are
     // found for few of them, and the choice is the same as if for all.
@@ -413,27 +460,28 @@ MeshDecomposition approximate_decomposition(const TriangleMesh& mesh, int max_bl
       if (!(nodes[i].leaf.concavity() > cost + context.tie) ||
           (best >= 0 && !(nodes[i].leaf.concavity() > nodes[best].next->gain)))
         break;
-      const auto& cut = known_split(i);
+      const auto& cut = known_split(i, room);
       if (!cut) continue;
-      if (std::max(cut->children[0].distance, cut->children[1].distance) > distance_goal &&
-          nodes[i].leaf.distance <= distance_goal)
-        continue;
+      bool strays = false;
+      for (const Leaf& child : cut->children) strays |= child.distance > distance_goal;
+      if (strays && nodes[i].leaf.distance <= distance_goal) continue;
       if (best < 0 || cut->gain > nodes[best].next->gain) best = i;
     }
     if (best < 0 || !(nodes[best].next->gain > cost + context.tie)) break;
     Node& parent = nodes[merge];
     Split back;
-    for (int s = 0; s < 2; ++s) {
-      back.children[s] = std::move(nodes[parent.child[s]].leaf);
-      nodes[parent.child[s]].alive = false;
+    for (int child : parent.children) {
+      back.children.push_back(std::move(nodes[child].leaf));
+      nodes[child].alive = false;
     }
     back.gain = cost;
-    parent.child = {-1, -1};
+    leaf_count -= static_cast<int>(parent.children.size()) - 1;
+    parent.children.clear();
     parent.next = std::move(back);
     parent.next_known = true;
-    --leaf_count;
     Split cut = std::move(*nodes[best].next);
     apply(best, std::move(cut));
+    grow();
   }
 
   std::vector<Leaf> leaves;

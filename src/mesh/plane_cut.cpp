@@ -197,6 +197,16 @@ std::array<MeshPart, 2> cut_part(const MeshPart& part, const CutPlane& plane, bo
   return side;
 }
 
+Real part_volume(const MeshPart& part) {
+  Real volume6 = 0;
+  for (size_t i = 0; i + 1 < part.polygon_start.size(); ++i)
+    volume6 += fan_volume6(&part.corners[part.polygon_start[i]],
+                           part.polygon_start[i + 1] - part.polygon_start[i]);
+  Real volume = volume6 / 6;
+  for (const auto& cap : part.caps) volume += cap_volume(cap);
+  return volume;
+}
+
 std::vector<std::array<Vec3, 3>> part_triangles(const MeshPart& part) {
   std::vector<std::array<Vec3, 3>> triangles;
   for (size_t i = 0; i + 1 < part.polygon_start.size(); ++i)

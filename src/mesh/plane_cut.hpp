@@ -49,6 +49,10 @@ MeshPart whole_mesh_part(const TriangleMesh& mesh, const Vec3& origin);
 // is all that scoring a candidate plane needs.
 std::array<MeshPart, 2> cut_part(const MeshPart& part, const CutPlane& plane, bool keep_surface);
 
+// The part's volume from its surface polygons and caps (the divergence theorem, as cut_part
+// finds it); needs the surface polygons.
+Real part_volume(const MeshPart& part);
+
 // The part's closed surface as triangles (surface polygons as fans, caps as signed fans), for
 // surface integrals such as surface_mass_properties().
 std::vector<std::array<Vec3, 3>> part_triangles(const MeshPart& part);
