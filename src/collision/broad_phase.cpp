@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "support/parallel.hpp"
 
@@ -119,8 +120,10 @@ void BroadPhase::find_block_pairs(const Model& model) {
   };
 
   // Every block into the cells its bounds cover; too large a block onto the large list.
+  low_cell_.resize(n);
   for (int i = 0; i < n; ++i) {
     const auto c0 = cell_of(bounds_[i].min), c1 = cell_of(bounds_[i].max);
+    low_cell_[i] = c0;
     const auto span = (c1 - c0).array() + 1;
     if (span.prod() > kMaxCellsPerBlock) {
       large_.push_back(i);
@@ -130,9 +133,7 @@ void BroadPhase::find_block_pairs(const Model& model) {
       for (long long y = c0.y(); y <= c1.y(); ++y)
         for (long long x = c0.x(); x <= c1.x(); ++x) entries_.push_back({cell_key(x, y, z), i});
   }
-  std::sort(entries_.begin(), entries_.end(), [](const Entry& p, const Entry& q) {
-    return p.cell != q.cell ? p.cell < q.cell : p.proxy < q.proxy;
-  });
+  group_by_cell();
 
   auto may_touch = [&](int i, int j) {
     const BlockProxy &p = proxies_[i], &q = proxies_[j];
@@ -148,9 +149,12 @@ void BroadPhase::find_block_pairs(const Model& model) {
       for (size_t t = s + 1; t < last; ++t) {
         const int i = entries_[s].proxy, j = entries_[t].proxy;
         if (!may_touch(i, j)) continue;
-        const auto c = cell_of(bounds_[i].min.cwiseMax(bounds_[j].min));
+        // The cell of the bounds' intersection's lower corner: as the cell of a coordinate
+        // never falls when the coordinate grows, it is the larger of the two blocks' lower
+        // cells, axis by axis.
+        const auto c = low_cell_[i].cwiseMax(low_cell_[j]);
         if (cell_key(c.x(), c.y(), c.z()) != entries_[first].cell) continue;
-        block_pairs_.push_back({i, j});  // i < j: entries are sorted by proxy within a cell
+        block_pairs_.push_back({i, j});  // i < j: a cell's entries are in proxy order
       }
     first = last;
   }
@@ -163,9 +167,55 @@ void BroadPhase::find_block_pairs(const Model& model) {
       if (j == l || (is_large[j] && j < l) || !may_touch(l, j)) continue;
       block_pairs_.push_back({std::min(l, j), std::max(l, j)});
     }
-  std::sort(block_pairs_.begin(), block_pairs_.end(), [](const BlockPair& p, const BlockPair& q) {
-    return p.a != q.a ? p.a < q.a : p.b < q.b;
-  });
+  sort_block_pairs();
+}
+
+// Entries were made in proxy order; a counting sort on the cell (numbered as first met, through
+// an open-addressing table) keeps that order within each cell, where a comparison sort of all
+// entries cost O(E log E). The cells' own order does not matter: the pairs are sorted after.
+void BroadPhase::group_by_cell() {
+  const size_t count = entries_.size();
+  size_t capacity = 16;
+  while (capacity < 2 * count) capacity *= 2;
+  constexpr unsigned long long kEmpty = ~0ull;  // keys use 3 * kCellBits = 63 bits
+  table_keys_.assign(capacity, kEmpty);
+  table_group_.resize(capacity);
+  group_of_.resize(count);
+  group_start_.clear();
+  const size_t mask = capacity - 1;
+  for (size_t e = 0; e < count; ++e) {
+    const unsigned long long key = entries_[e].cell;
+    size_t slot = static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> 20) & mask;
+    while (table_keys_[slot] != kEmpty && table_keys_[slot] != key) slot = (slot + 1) & mask;
+    if (table_keys_[slot] == kEmpty) {
+      table_keys_[slot] = key;
+      table_group_[slot] = static_cast<int>(group_start_.size());
+      group_start_.push_back(0);
+    }
+    group_of_[e] = table_group_[slot];
+    ++group_start_[group_of_[e]];
+  }
+  int next = 0;
+  for (int& start : group_start_) next += std::exchange(start, next);
+  grouped_.resize(count);
+  for (size_t e = 0; e < count; ++e) grouped_[group_start_[group_of_[e]]++] = entries_[e];
+  entries_.swap(grouped_);
+}
+
+// Pairs in (a, b) order, so that the narrow phase sees the same order whatever the grid: a
+// counting sort on a, then each a's few partners sorted.
+void BroadPhase::sort_block_pairs() {
+  const size_t n = proxies_.size();
+  pair_start_.assign(n + 1, 0);
+  for (const BlockPair& p : block_pairs_) ++pair_start_[p.a + 1];
+  for (size_t i = 0; i < n; ++i) pair_start_[i + 1] += pair_start_[i];
+  sorted_pairs_.resize(block_pairs_.size());
+  pair_next_.assign(pair_start_.begin(), pair_start_.end() - 1);
+  for (const BlockPair& p : block_pairs_) sorted_pairs_[pair_next_[p.a]++] = p;
+  for (size_t i = 0; i < n; ++i)
+    std::sort(sorted_pairs_.begin() + pair_start_[i], sorted_pairs_.begin() + pair_start_[i + 1],
+              [](const BlockPair& p, const BlockPair& q) { return p.b < q.b; });
+  block_pairs_.swap(sorted_pairs_);
 }
 
 void BroadPhase::find_wall_pairs(const Model& model, const std::vector<Real>& reach, Real time) {

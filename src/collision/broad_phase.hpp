@@ -4,10 +4,10 @@
 // Why a uniform grid and not sweep-and-prune. In a pile of N bodies in a box, sorting along one
 // axis leaves every block overlapping, along that axis, the whole slab of bodies beside it
 // (about N^(2/3) of them), so the sweep costs about N^(5/3). A grid whose cells are about one
-// block wide puts a bounded number of blocks in each cell, and the cost is linear in N but for
-// one sort of the (cell, block) entries. The cell is the median block extent, so a few large
-// blocks (a floor slab, a column) do not coarsen it; a block spanning too many cells goes on a
-// short list that is tested against every block instead.
+// block wide puts a bounded number of blocks in each cell, and the cost is linear in N (the
+// (cell, block) entries are grouped by a counting sort, not a comparison sort). The cell is the
+// median block extent, so a few large blocks (a floor slab, a column) do not coarsen it; a block
+// spanning too many cells goes on a short list that is tested against every block instead.
 //
 // A pair that shares several cells is reported once: by the cell that holds the lower corner of
 // the intersection of the two bounds. Pairs come out sorted, so the narrow phase and everything
@@ -75,6 +75,8 @@ class BroadPhase {
   void build_proxies(const Model& model, const BodySubset* subset);
   void keep_owned_pairs(const BodySubset& subset);
   void find_block_pairs(const Model& model);
+  void group_by_cell();
+  void sort_block_pairs();
   // Walls taken away (removed_at) by `time` take no part.
   void find_wall_pairs(const Model& model, const std::vector<Real>& reach, Real time);
 
@@ -88,7 +90,12 @@ class BroadPhase {
     unsigned long long cell;
     int proxy;
   };
-  std::vector<Entry> entries_;
+  std::vector<Entry> entries_, grouped_;
+  std::vector<unsigned long long> table_keys_;  // cell keys of an open-addressing table
+  std::vector<int> table_group_, group_of_, group_start_;
+  std::vector<int> pair_start_, pair_next_;
+  std::vector<BlockPair> sorted_pairs_;
+  std::vector<Eigen::Matrix<long long, 3, 1>> low_cell_;  // per proxy: its bounds' lowest cell
   std::vector<int> large_;
   std::vector<char> is_large_;  // per proxy, kept between steps
   bool built_for_subset_ = false;

@@ -159,7 +159,8 @@ std::vector<MeshPart> connected_components(const MeshPart& part) {
     return it->second;
   };
   std::vector<int> polygon_piece(polygons);
-  for (size_t i = 0; i < polygons; ++i) polygon_piece[i] = piece(part.corners[part.polygon_start[i]]);
+  for (size_t i = 0; i < polygons; ++i)
+    polygon_piece[i] = piece(part.corners[part.polygon_start[i]]);
   std::vector<int> point_piece(part.points.size());
   for (size_t i = 0; i < part.points.size(); ++i) point_piece[i] = piece(part.points[i]);
   if (roots.size() < 2 || std::count(point_piece.begin(), point_piece.end(), -1) > 0)
