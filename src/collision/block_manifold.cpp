@@ -226,20 +226,22 @@ void place_block(const Block& block, const BlockPose& pose, WorldBlock& out) {
     out.normals[f] = pose.rotation * polygons[f].normal;
     out.offsets[f] = out.normals[f].dot(out.nodes[polygons[f].nodes[0]]);
   }
-  out.edge_node.clear();
-  out.edge_direction.clear();
-  out.edge_n1.clear();
-  out.edge_n2.clear();
-  out.edge_arc.clear();
-  for (const Edge& e : block.edges()) {
-    if (!e.polygon_boundary) continue;
-    const Vec3& n1 = out.normals[block.triangles()[e.triangles[0]].polygon];
-    const Vec3& n2 = out.normals[block.triangles()[e.triangles[1]].polygon];
-    out.edge_node.push_back(e.nodes[0]);
-    out.edge_direction.push_back(out.nodes[e.nodes[1]] - out.nodes[e.nodes[0]]);
-    out.edge_n1.push_back(n1);
-    out.edge_n2.push_back(n2);
-    out.edge_arc.push_back(n2.cross(n1));
+  const std::vector<PolygonEdge>& edges = block.polygon_edges();
+  const size_t count = edges.size();
+  out.edge_node.resize(count);
+  out.edge_direction.resize(count);
+  out.edge_n1.resize(count);
+  out.edge_n2.resize(count);
+  out.edge_arc.resize(count);
+  for (size_t k = 0; k < count; ++k) {
+    const PolygonEdge& e = edges[k];
+    const Vec3& n1 = out.normals[e.polygons[0]];
+    const Vec3& n2 = out.normals[e.polygons[1]];
+    out.edge_node[k] = e.nodes[0];
+    out.edge_direction[k] = out.nodes[e.nodes[1]] - out.nodes[e.nodes[0]];
+    out.edge_n1[k] = n1;
+    out.edge_n2[k] = n2;
+    out.edge_arc[k] = n2.cross(n1);
   }
 }
 

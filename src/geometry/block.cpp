@@ -205,8 +205,12 @@ Block::Block(const PolyhedronDef& def) {
       else
         edges_[it->second].triangles[1] = static_cast<int>(t);
     }
-  for (Edge& e : edges_)
-    e.polygon_boundary = triangles_[e.triangles[0]].polygon != triangles_[e.triangles[1]].polygon;
+  for (Edge& e : edges_) {
+    const int first = triangles_[e.triangles[0]].polygon;
+    const int second = triangles_[e.triangles[1]].polygon;
+    e.polygon_boundary = first != second;
+    if (e.polygon_boundary) polygon_edges_.push_back({e.nodes, {first, second}});
+  }
 
   // Node normals. Paper (eq. 2): the sum of the normals of the triangles at the node, which
   // weights a polygon by how many of its triangles meet there. Default: the angle-weighted

@@ -45,6 +45,13 @@ struct Edge {
   bool polygon_boundary;         // false for a diagonal inside a planar polygon
 };
 
+// An edge between two polygons (an Edge that is no diagonal inside one polygon): its nodes a < b
+// and the polygons of its first and second triangle. What placing a block in the world walks.
+struct PolygonEdge {
+  std::array<int, 2> nodes;
+  std::array<int, 2> polygons;
+};
+
 // Tetrahedron (block centroid, the three nodes of triangle `triangle`).
 struct Element {
   int triangle;
@@ -72,6 +79,8 @@ class Block {
   const std::vector<Triangle>& triangles() const { return triangles_; }
   const std::vector<Polygon>& polygons() const { return polygons_; }
   const std::vector<Edge>& edges() const { return edges_; }
+  // The edges with polygon_boundary, in edges() order.
+  const std::vector<PolygonEdge>& polygon_edges() const { return polygon_edges_; }
   const std::vector<Element>& elements() const { return elements_; }
 
   const Vec3& node_normal(int node, NormalVariant v) const {
@@ -99,6 +108,7 @@ class Block {
   std::vector<Triangle> triangles_;
   std::vector<Polygon> polygons_;
   std::vector<Edge> edges_;
+  std::vector<PolygonEdge> polygon_edges_;
   std::vector<Element> elements_;
   std::vector<Vec3> node_normals_, node_normals_paper_;
   std::vector<Vec3> edge_normals_, edge_normals_paper_;
