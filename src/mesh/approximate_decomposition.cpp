@@ -101,6 +101,13 @@ struct Split {
   Real gain = 0;
 };
 
+// The split of a leaf whose hull's volume is `hull` into these children.
+Split split_into(Real hull, std::vector<Leaf> children) {
+  Split split{std::move(children), hull};
+  for (const Leaf& child : split.children) split.gain -= child.hull_volume;
+  return split;
+}
+
 struct Candidate {
   CutPlane plane;
   Real spacing = 0;  // between neighbouring evenly spaced offsets; 0 for a plane through corners
@@ -291,9 +298,7 @@ std::optional<Split> split(const Leaf& leaf, Context context) {
                         : std::nullopt;
     if (!children) children = leaves_of({std::move(sides[0]), std::move(sides[1])}, context);
     if (!children) continue;
-    Real gain = leaf.hull_volume;
-    for (const Leaf& child : *children) gain -= child.hull_volume;
-    return Split{std::move(*children), gain};
+    return split_into(leaf.hull_volume, std::move(*children));
   }
   return std::nullopt;
 }
@@ -385,11 +390,8 @@ MeshDecomposition approximate_decomposition(const TriangleMesh& mesh, int max_bl
     const Real gap = kWeld * radius_about_mean(nodes[0].leaf.part.points);
     auto shells = separate_groups(nodes[0].leaf.part, kSmallestSide * result.mesh_volume, gap);
     if (shells.size() > 1 && static_cast<int>(shells.size()) <= max_blocks)
-      if (auto children = leaves_of(std::move(shells), context)) {
-        Split whole{std::move(*children), nodes[0].leaf.hull_volume};
-        for (const Leaf& child : whole.children) whole.gain -= child.hull_volume;
-        apply(0, std::move(whole));
-      }
+      if (auto children = leaves_of(std::move(shells), context))
+        apply(0, split_into(nodes[0].leaf.hull_volume, std::move(*children)));
   }
 
   // Cuts while blocks are left: a block that strays too far outside first, then concavity.
