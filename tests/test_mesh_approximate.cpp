@@ -9,6 +9,7 @@
 
 #include "mesh/mesh_decomposition.hpp"
 #include "mesh/mesh_check.hpp"
+#include "mesh/hull_polyhedron.hpp"
 #include "mesh/mesh_distance.hpp"
 #include "mesh/part_components.hpp"
 #include "mesh/plane_cut.hpp"
@@ -202,6 +203,51 @@ TEST(MeshApprox, BlocksCoverTheMesh) {
   EXPECT_EQ(uncovered, 0);
   expect_valid_and_disjoint(d, size);
   report("potato_small_over_coverage_percent", 100 * d.over_coverage / d.mesh_volume);
+}
+
+// The search that stops at the first triangle within a bar gives the signed distance wherever
+// that is above the bar, and the bar or the distance elsewhere; so a block's sampled distance, which keeps the
+// largest so far as its bar, is the largest of the plain distances at the same points.
+TEST(MeshDistance, StoppingAtABarKeepsTheLargestDistance) {
+  const TriangleMesh mesh = testing_support::potato_mesh(40, 20);
+  const MeshDistance distance(mesh);
+  const Real size = mesh_size(mesh);
+  int above = 0, below = 0;
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j)
+      for (int k = 0; k < 10; ++k) {
+        const Vec3 p(-2.0 + 4.0 * (i + 0.5) / 10, -1.6 + 3.2 * (j + 0.5) / 10,
+                     -1.4 + 2.8 * (k + 0.5) / 10);
+        const Real exact = distance.signed_distance(p);
+        for (const Real bar : {Real(0), 0.02 * size, 0.1 * size}) {
+          const Real stopped = distance.signed_distance_above(p, bar);
+          if (exact > bar) {
+            EXPECT_EQ(stopped, exact) << p.transpose() << " bar " << bar;
+            ++above;
+          } else {
+            EXPECT_TRUE(stopped == bar || stopped == exact) << p.transpose() << " bar " << bar;
+            ++below;
+          }
+        }
+      }
+  EXPECT_GT(above, 500);
+  EXPECT_GT(below, 500);
+
+  // The potato's hull strays outside it over its hollows.
+  const auto hull = hull_polyhedron(mesh.vertices);
+  ASSERT_TRUE(hull);
+  Real largest = 0;
+  for (const Vec3& p : hull->points) largest = std::max(largest, distance.signed_distance(p));
+  for (const auto& loop : hull->polygons)
+    for (size_t k = 1; k + 1 < loop.size(); ++k) {
+      const Vec3 &a = hull->points[loop[0]], &b = hull->points[loop[k]],
+                 &c = hull->points[loop[k + 1]];
+      for (const Vec3& p :
+           {Vec3((a + b + c) / 3), Vec3((a + b) / 2), Vec3((b + c) / 2), Vec3((c + a) / 2)})
+        largest = std::max(largest, distance.signed_distance(p));
+    }
+  EXPECT_GT(largest, 1e-3 * size);
+  EXPECT_EQ(sampled_outside_distance(distance, *hull), largest);
 }
 
 TEST(MeshApprox, MaxBlocksIsRespected) {

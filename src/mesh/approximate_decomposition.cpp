@@ -128,12 +128,13 @@ struct Context {
 };
 
 // About how far the hull of these points strays outside the mesh (sampled, to rank candidate
-// cuts); infinite if it is no valid block.
+// cuts); infinite if they span no hull. The hull is Qhull's, unchecked: whether a side makes a
+// block is settled once a cut is chosen (leaves_of), and checking every candidate's hull as a
+// block cost as much as sampling it.
 Real block_distance(const std::vector<Vec3>& points, const Context& context) {
-  const std::vector<Vec3> cloud = thinned_cloud(points, kDistanceCloudCells);
-  auto block = hull_block(cloud, kWeld * radius_about_mean(cloud));
-  if (!block) return std::numeric_limits<Real>::infinity();
-  return sampled_outside_distance(*context.distance, *block);
+  auto hull = hull_polyhedron(thinned_cloud(points, kDistanceCloudCells));
+  if (!hull) return std::numeric_limits<Real>::infinity();
+  return sampled_outside_distance(*context.distance, *hull);
 }
 
 // x, y, z, the six face and four body diagonals of a cube (an ear or a blade at an angle is cut

@@ -199,6 +199,10 @@ Real hull_volume(const std::vector<Vec3>& points) {
   return hull.qh()->totvol;
 }
 
+std::optional<PolyhedronDef> hull_polyhedron(const std::vector<Vec3>& points) {
+  return qhull_polyhedron(points);
+}
+
 std::optional<PolyhedronDef> hull_block(const std::vector<Vec3>& points, Real weld, Real margin) {
   // Only the hull's vertices matter; weld those (far fewer than the points).
   std::optional<PolyhedronDef> def = qhull_polyhedron(points);

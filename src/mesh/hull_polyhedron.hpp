@@ -16,6 +16,11 @@ Real hull_volume(const std::vector<Vec3>& points);
 // so the scale of a weld distance.
 Real radius_about_mean(const std::vector<Vec3>& points);
 
+// The convex hull of any points as Qhull gives it (coplanar facets merged into polygons), not
+// checked as a block: for sampling a hull's surface, where hull_block's welding and checks
+// would cost more than the samples. Nothing when the points span no 3-d hull.
+std::optional<PolyhedronDef> hull_polyhedron(const std::vector<Vec3>& points);
+
 // The convex hull of any points (repeats and interior points allowed) as a PolyhedronDef that
 // Block accepts, or nothing when they span no usable volume. Hull vertices closer than `weld`
 // are welded first (one of them kept), and any vertex that would break one of Block's checks

@@ -130,11 +130,12 @@ int MeshDistance::build(int first, int count) {
   return index;
 }
 
-Real MeshDistance::signed_distance(const Vec3& p) const {
-  if (nodes_.empty()) return std::numeric_limits<Real>::infinity();
-  Real best2 = std::numeric_limits<Real>::infinity();
-  Vec3 best_point = p;
-  int best_face = -1, best_feature = 6;
+bool MeshDistance::nearest(const Vec3& p, Real stop2, Real& best2, Vec3& best_point,
+                           int& best_face, int& best_feature) const {
+  best2 = std::numeric_limits<Real>::infinity();
+  best_point = p;
+  best_face = -1;
+  best_feature = 6;
   int stack[128];
   int top = 0;
   stack[top++] = 0;
@@ -144,13 +145,15 @@ Real MeshDistance::signed_distance(const Vec3& p) const {
     if (node.count > 0) {
       for (int i = node.first; i < node.first + node.count; ++i) {
         const int f = order_[i];
-        const auto [q, feature] = nearest_on_triangle(p, corners_[f][0], corners_[f][1], corners_[f][2]);
+        const auto& c = corners_[f];
+        const auto [q, feature] = nearest_on_triangle(p, c[0], c[1], c[2]);
         const Real d2 = (p - q).squaredNorm();
         if (d2 < best2) {
           best2 = d2;
           best_point = q;
           best_face = f;
           best_feature = feature;
+          if (best2 <= stop2) return false;
         }
       }
       continue;
@@ -167,10 +170,33 @@ Real MeshDistance::signed_distance(const Vec3& p) const {
       stack[top++] = node.right;
     }
   }
+  return true;
+}
+
+Real MeshDistance::signed_from(const Vec3& p, Real best2, const Vec3& best_point, int best_face,
+                               int best_feature) const {
   const Vec3& normal = best_feature < 3   ? vertex_normal_[best_face][best_feature]
                        : best_feature < 6 ? edge_normal_[best_face][best_feature - 3]
                                           : face_normal_[best_face];
   return (p - best_point).dot(normal) > 0 ? std::sqrt(best2) : -std::sqrt(best2);
+}
+
+Real MeshDistance::signed_distance(const Vec3& p) const {
+  if (nodes_.empty()) return std::numeric_limits<Real>::infinity();
+  Real best2;
+  Vec3 best_point;
+  int best_face, best_feature;
+  nearest(p, -1, best2, best_point, best_face, best_feature);
+  return signed_from(p, best2, best_point, best_face, best_feature);
+}
+
+Real MeshDistance::signed_distance_above(const Vec3& p, Real bar) const {
+  if (nodes_.empty()) return std::numeric_limits<Real>::infinity();
+  Real best2;
+  Vec3 best_point;
+  int best_face, best_feature;
+  if (!nearest(p, bar * bar, best2, best_point, best_face, best_feature)) return bar;
+  return signed_from(p, best2, best_point, best_face, best_feature);
 }
 
 Real largest_outside_distance(const MeshDistance& distance, const std::vector<PolyhedronDef>& blocks,
@@ -190,7 +216,7 @@ Real largest_outside_distance(const MeshDistance& distance, const std::vector<Po
         const auto& [a, b, c] = triangles[t];
         for (const Vec3& p : {a, b, c, Vec3((a + b + c) / 3), Vec3((a + b) / 2), Vec3((b + c) / 2),
                               Vec3((c + a) / 2)})
-          coarse[t] = std::max(coarse[t], distance.signed_distance(p));
+          coarse[t] = std::max(coarse[t], distance.signed_distance_above(p, coarse[t]));
       },
       true);
   Real result = 0;
@@ -211,16 +237,20 @@ Real largest_outside_distance(const MeshDistance& distance, const std::vector<Po
 }
 
 Real sampled_outside_distance(const MeshDistance& distance, const PolyhedronDef& block) {
+  // The faces' centres and edge midpoints first: where a hull spans a hollow they stand
+  // farthest out, and a large distance found early lets the other points stop their search
+  // sooner (signed_distance_above). The result does not depend on the order.
   Real result = 0;
-  for (const Vec3& p : block.points) result = std::max(result, distance.signed_distance(p));
   for (const auto& loop : block.polygons)
     for (size_t k = 1; k + 1 < loop.size(); ++k) {
       const Vec3 &a = block.points[loop[0]], &b = block.points[loop[k]],
                  &c = block.points[loop[k + 1]];
       for (const Vec3& p :
            {Vec3((a + b + c) / 3), Vec3((a + b) / 2), Vec3((b + c) / 2), Vec3((c + a) / 2)})
-        result = std::max(result, distance.signed_distance(p));
+        result = std::max(result, distance.signed_distance_above(p, result));
     }
+  for (const Vec3& p : block.points)
+    result = std::max(result, distance.signed_distance_above(p, result));
   return result;
 }
 

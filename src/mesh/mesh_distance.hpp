@@ -18,6 +18,13 @@ class MeshDistance {
   // Distance from p to the mesh's surface, negative inside the solid.
   Real signed_distance(const Vec3& p) const;
 
+  // signed_distance(p) where it is above `bar` (>= 0); else `bar`, or the distance where no
+  // triangle lies within bar of p (deep inside). The search stops at the first triangle within
+  // bar, which already bounds the distance by bar: a largest distance over many points needs
+  // no more of the points below it, and most points of a block lie on the mesh, where such a
+  // triangle is found at once.
+  Real signed_distance_above(const Vec3& p, Real bar) const;
+
  private:
   struct Node {
     Vec3 lo, hi;
@@ -25,6 +32,11 @@ class MeshDistance {
     int right;         // inner node: left child is the next node, right child here
   };
   int build(int first, int count);
+  // The search of both: the nearest point, or stop at one within sqrt(stop2) (returns false).
+  bool nearest(const Vec3& p, Real stop2, Real& best2, Vec3& best_point, int& best_face,
+               int& best_feature) const;
+  Real signed_from(const Vec3& p, Real best2, const Vec3& best_point, int best_face,
+                   int best_feature) const;
 
   std::vector<std::array<Vec3, 3>> corners_;
   std::vector<Vec3> face_normal_;
