@@ -88,8 +88,27 @@ TEST(SubStepManifold, RebuiltFromItsFeaturesIsTheSearchedOne) {
       place_block(coin, qb, wb);
       Manifold searched, rebuilt;
       const bool found = block_manifold(coin, wa, coin, wb, margin, scratch, searched);
+      bool was_searched = false;
       const bool rebuilt_found =
-          rebuild_manifold(coin, wa, coin, wb, margin, detected, scratch, rebuilt);
+          rebuild_manifold(coin, wa, coin, wb, margin, detected, scratch, rebuilt, &was_searched);
+      // The same on blocks placed without their edges, as a sub-step places them: the same
+      // manifold to the bit, or a call for the search exactly where rebuild_manifold searched.
+      WorldBlock fa, fb;
+      place_faces(coin, qa, fa);
+      place_faces(coin, qb, fb);
+      Manifold from_faces;
+      const Rebuild r =
+          rebuild_from_features(coin, fa, coin, fb, margin, detected, scratch, from_faces);
+      ASSERT_EQ(r == Rebuild::search, was_searched);
+      if (r != Rebuild::search) {
+        ASSERT_EQ(r == Rebuild::held, rebuilt_found);
+        ASSERT_EQ(from_faces.count, rebuilt.count);
+        EXPECT_EQ(from_faces.normal, rebuilt.normal);
+        for (int k = 0; k < rebuilt.count; ++k) {
+          EXPECT_EQ(from_faces.point[k], rebuilt.point[k]);
+          EXPECT_EQ(from_faces.gap[k], rebuilt.gap[k]);
+        }
+      }
       if (found && searched.feature == detected.feature &&
           searched.feature_a == detected.feature_a && searched.feature_b == detected.feature_b) {
         ++same;

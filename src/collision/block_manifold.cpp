@@ -173,12 +173,11 @@ void clip_faces(const Block& ref, const std::vector<Vec3>& ref_nodes, const Vec3
   }
 }
 
-// The one point of an edge-pair manifold: midway between the closest points of A's edge i and
-// B's edge j, with the gap `separation` along `axis` (out of A).
-void edge_manifold(const WorldBlock& wa, const WorldBlock& wb, int i, int j, const Vec3& axis,
-                   Real separation, Manifold& out) {
-  const auto [ca, cb] = closest_points(wa.nodes[wa.edge_node[i]], wa.edge_direction[i],
-                                       wb.nodes[wb.edge_node[j]], wb.edge_direction[j]);
+// The one point of an edge-pair manifold: midway between the closest points of A's edge i (from
+// pa along da) and B's edge j, with the gap `separation` along `axis` (out of A).
+void edge_manifold(const Vec3& pa, const Vec3& da, const Vec3& pb, const Vec3& db, int i, int j,
+                   const Vec3& axis, Real separation, Manifold& out) {
+  const auto [ca, cb] = closest_points(pa, da, pb, db);
   out.normal = axis;
   out.count = 1;
   out.point[0] = 0.5 * (ca + cb);
@@ -186,6 +185,13 @@ void edge_manifold(const WorldBlock& wa, const WorldBlock& wb, int i, int j, con
   out.feature = ManifoldFeature::edges;
   out.feature_a = i;
   out.feature_b = j;
+}
+
+// The same for the placed blocks' edges i and j.
+void edge_manifold(const WorldBlock& wa, const WorldBlock& wb, int i, int j, const Vec3& axis,
+                   Real separation, Manifold& out) {
+  edge_manifold(wa.nodes[wa.edge_node[i]], wa.edge_direction[i], wb.nodes[wb.edge_node[j]],
+                wb.edge_direction[j], i, j, axis, separation, out);
 }
 
 // The face manifold of out.feature (face_of_a or face_of_b, out.feature_a/_b its face): the
@@ -215,7 +221,7 @@ bool clip_reference_face(const Block& a, const WorldBlock& wa, const Block& b,
 
 }  // namespace
 
-void place_block(const Block& block, const BlockPose& pose, WorldBlock& out) {
+void place_faces(const Block& block, const BlockPose& pose, WorldBlock& out) {
   out.centre = pose.position;
   out.nodes.resize(block.nodes().size());
   for (size_t i = 0; i < out.nodes.size(); ++i) out.nodes[i] = pose.to_world(block.nodes()[i]);
@@ -226,6 +232,10 @@ void place_block(const Block& block, const BlockPose& pose, WorldBlock& out) {
     out.normals[f] = pose.rotation * polygons[f].normal;
     out.offsets[f] = out.normals[f].dot(out.nodes[polygons[f].nodes[0]]);
   }
+  out.edge_node.clear();
+}
+
+void place_edges(const Block& block, WorldBlock& out) {
   const std::vector<PolygonEdge>& edges = block.polygon_edges();
   const size_t count = edges.size();
   out.edge_node.resize(count);
@@ -243,6 +253,11 @@ void place_block(const Block& block, const BlockPose& pose, WorldBlock& out) {
     out.edge_n2[k] = n2;
     out.edge_arc[k] = n2.cross(n1);
   }
+}
+
+void place_block(const Block& block, const BlockPose& pose, WorldBlock& out) {
+  place_faces(block, pose, out);
+  place_edges(block, out);
 }
 
 int reduce_points(const Vec3& normal, const Vec3& along, Real equal_depth, const Vec3* points,
@@ -371,15 +386,9 @@ bool block_manifold(const Block& a, const WorldBlock& wa, const Block& b, const 
   return false;
 }
 
-bool rebuild_manifold(const Block& a, const WorldBlock& wa, const Block& b, const WorldBlock& wb,
-                      Real margin, const Manifold& detected, ManifoldScratch& s, Manifold& out,
-                      bool* searched) {
-  if (searched) *searched = false;
-  // Where the cached features no longer answer: the whole search.
-  auto search_again = [&] {
-    if (searched) *searched = true;
-    return block_manifold(a, wa, b, wb, margin, s, out);
-  };
+Rebuild rebuild_from_features(const Block& a, const WorldBlock& wa, const Block& b,
+                              const WorldBlock& wb, Real margin, const Manifold& detected,
+                              ManifoldScratch& s, Manifold& out) {
   out.count = 0;
   out.feature = detected.feature;
   out.feature_a = detected.feature_a;
@@ -392,9 +401,12 @@ bool rebuild_manifold(const Block& a, const WorldBlock& wa, const Block& b, cons
   const Real tolerance = 1e-6 * std::min(a.bounding_radius(), b.bounding_radius());
   if (detected.feature == ManifoldFeature::edges) {
     const int i = detected.feature_a, j = detected.feature_b;
-    const Vec3& pa = wa.nodes[wa.edge_node[i]];
-    const Vec3& pb = wb.nodes[wb.edge_node[j]];
-    const Vec3 &da = wa.edge_direction[i], &db = wb.edge_direction[j];
+    // The edges from the placed nodes, as place_edges computes them (the same bits).
+    const std::array<int, 2>& ends_a = a.polygon_edges()[static_cast<size_t>(i)].nodes;
+    const std::array<int, 2>& ends_b = b.polygon_edges()[static_cast<size_t>(j)].nodes;
+    const Vec3& pa = wa.nodes[ends_a[0]];
+    const Vec3& pb = wb.nodes[ends_b[0]];
+    const Vec3 da = wa.nodes[ends_a[1]] - pa, db = wb.nodes[ends_b[1]] - pb;
     Vec3 axis = da.cross(db);
     const Real length = axis.norm();
     if (length > 1e-6 * da.norm() * db.norm()) {
@@ -405,32 +417,41 @@ bool rebuild_manifold(const Block& a, const WorldBlock& wa, const Block& b, cons
       for (const Vec3& p : wa.nodes) highest_a = std::max(highest_a, axis.dot(p));
       for (const Vec3& p : wb.nodes) lowest_b = std::min(lowest_b, axis.dot(p));
       if (lowest_b - highest_a >= separation - tolerance) {
-        if (separation > margin) return false;
-        edge_manifold(wa, wb, i, j, axis, separation, out);
-        return true;
+        if (separation > margin) return Rebuild::apart;
+        edge_manifold(pa, da, pb, db, i, j, axis, separation, out);
+        return Rebuild::held;
       }
     }
-    return search_again();  // turned parallel or no longer the supports
+    return Rebuild::search;  // turned parallel or no longer the supports
   }
   // Its gap floor is the face's, which only the search finds again.
-  if (detected.feature == ManifoldFeature::edges_past_rim) return search_again();
+  if (detected.feature == ManifoldFeature::edges_past_rim) return Rebuild::search;
   if (detected.feature != ManifoldFeature::face_of_a &&
       detected.feature != ManifoldFeature::face_of_b)
-    return false;
+    return Rebuild::apart;
   const bool of_b = detected.feature == ManifoldFeature::face_of_b;
   const int face = of_b ? detected.feature_b : detected.feature_a;
   const WorldBlock& reference = of_b ? wb : wa;
   const WorldBlock& other = of_b ? wa : wb;
   const Real lowest =
       face_separation(reference.normals[face], reference.offsets[face], other.nodes);
-  if (lowest > margin) return false;
+  if (lowest > margin) return Rebuild::apart;
   if (!clip_reference_face(a, wa, b, wb, margin, s, out)) out.count = 0;
   Real shallowest_kept = kInfinity;
   for (int k = 0; k < out.count; ++k) shallowest_kept = std::min(shallowest_kept, out.gap[k]);
-  if (out.count > 0 && lowest >= shallowest_kept - tolerance) return true;
+  if (out.count > 0 && lowest >= shallowest_kept - tolerance) return Rebuild::held;
   // A node deeper than the clipped face's corners (or none of them within the margin while a
   // node is): the whole search.
-  return search_again();
+  return Rebuild::search;
+}
+
+bool rebuild_manifold(const Block& a, const WorldBlock& wa, const Block& b, const WorldBlock& wb,
+                      Real margin, const Manifold& detected, ManifoldScratch& s, Manifold& out,
+                      bool* searched) {
+  const Rebuild rebuilt = rebuild_from_features(a, wa, b, wb, margin, detected, s, out);
+  if (searched) *searched = rebuilt == Rebuild::search;
+  if (rebuilt == Rebuild::search) return block_manifold(a, wa, b, wb, margin, s, out);
+  return rebuilt == Rebuild::held;
 }
 
 bool block_manifold(const Block& a, const BlockPose& pose_a, const Block& b,

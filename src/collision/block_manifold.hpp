@@ -66,6 +66,12 @@ struct WorldBlock {
 };
 
 void place_block(const Block& block, const BlockPose& pose, WorldBlock& out);
+// place_block in two parts: the centre, nodes and face planes, all that a face's clip or a wall
+// reads, then the edges, which only the axis search reads (from the placed nodes and normals).
+// A sub-step rebuilding a face patch needs no edges unless the search must answer
+// (rebuild_from_features).
+void place_faces(const Block& block, const BlockPose& pose, WorldBlock& out);
+void place_edges(const Block& block, WorldBlock& out);
 
 // Reused memory of one thread.
 struct ManifoldScratch {
@@ -105,6 +111,14 @@ bool block_manifold(const Block& a, const BlockPose& pose_a, const Block& b,
 bool rebuild_manifold(const Block& a, const WorldBlock& world_a, const Block& b,
                       const WorldBlock& world_b, Real margin, const Manifold& detected,
                       ManifoldScratch& scratch, Manifold& out, bool* searched = nullptr);
+
+// rebuild_manifold without the search, on blocks placed at least by place_faces: `held` (and
+// `out` the manifold), `apart` (nothing within the margin), or `search` where the features no
+// longer answer and block_manifold must, on blocks with their edges placed.
+enum class Rebuild : std::uint8_t { held, apart, search };
+Rebuild rebuild_from_features(const Block& a, const WorldBlock& world_a, const Block& b,
+                              const WorldBlock& world_b, Real margin, const Manifold& detected,
+                              ManifoldScratch& scratch, Manifold& out);
 
 // The patch of a convex block and a wall plane (normal into the space where bodies live; the
 // patch normal is then -wall_normal): the corners of the block's face most opposed to the wall,

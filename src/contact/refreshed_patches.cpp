@@ -18,7 +18,9 @@ void refresh_patches(const Model& model, const State& state, const ContactWorksp
     ManifoldScratch& s = scratch.threads[static_cast<size_t>(thread_index())];
     const BlockInstance& instance_a = model.bodies[d.body_a].blocks[d.block_a];
     const Block& a = block_of(model, d.body_a, d.block_a);
-    place_block(a, block_pose(instance_a, state.bodies[d.body_a]), s.a);
+    // The edges are placed only where the search must answer: most patches are rebuilt from
+    // a face's clip, which reads none of them.
+    place_faces(a, block_pose(instance_a, state.bodies[d.body_a]), s.a);
     Manifold m;
     bool found;
     if (d.wall >= 0) {
@@ -27,9 +29,15 @@ void refresh_patches(const Model& model, const State& state, const ContactWorksp
     } else {
       const BlockInstance& instance_b = model.bodies[d.body_b].blocks[d.block_b];
       const Block& b = block_of(model, d.body_b, d.block_b);
-      place_block(b, block_pose(instance_b, state.bodies[d.body_b]), s.b);
-      found = rebuild_manifold(a, s.a, b, s.b, reach[d.body_a] + reach[d.body_b], d.manifold, s,
-                               m);
+      place_faces(b, block_pose(instance_b, state.bodies[d.body_b]), s.b);
+      const Real margin = reach[d.body_a] + reach[d.body_b];
+      const Rebuild rebuilt = rebuild_from_features(a, s.a, b, s.b, margin, d.manifold, s, m);
+      found = rebuilt == Rebuild::held;
+      if (rebuilt == Rebuild::search) {
+        place_edges(a, s.a);
+        place_edges(b, s.b);
+        found = block_manifold(a, s.a, b, s.b, margin, s, m);
+      }
     }
     if (!found) return;
     ContactPatch& p = scratch.slots[static_cast<size_t>(k)];
