@@ -167,6 +167,89 @@ TEST(SubStepManifold, FeaturesThatNoLongerHoldAreSearchedAgain) {
   EXPECT_NEAR(searched.gap[0], 0.001, 1e-12);
 }
 
+// A coin lying tilted across another's rim: the search takes a face whose clipped corners are
+// not the other coin's deepest node below the reference plane (that node is past the rim, beside
+// the face). A sub-step's rebuild lets such a node lie as deep again (Manifold::beyond_rim)
+// instead of calling the search every time; where the search at the moved pose picks the same
+// features, the rebuilt manifold is its very manifold, and a node that sinks further past the
+// rim (here: the allowance taken away) still calls the search.
+TEST(SubStepManifold, ANodePastTheRimAsDeepAsAtTheSearchKeepsTheFeatures) {
+  const Block coin(regular_prism(6, 0.15, 0.1, Axis::z));
+  const Real margin = 0.02;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<Real> unit(0, 1);
+  int past_rim = 0, held = 0, same = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const BlockPose pa = pose_of(Mat3::Identity(), Vec3::Zero());
+    const Mat3 tilt = about(Vec3(unit(rng) - 0.5, unit(rng) - 0.5, 0), 0.4 * unit(rng));
+    const BlockPose pb = pose_of(tilt * about(Vec3::UnitZ(), unit(rng)),
+                                 Vec3(0.12 + 0.15 * unit(rng), 0.1 * (unit(rng) - 0.5),
+                                      0.05 + 0.1 * unit(rng)));
+    ManifoldScratch scratch;
+    Manifold detected;
+    if (!block_manifold(coin, pa, coin, pb, margin, scratch, detected)) continue;
+    if (detected.feature != ManifoldFeature::face_of_a &&
+        detected.feature != ManifoldFeature::face_of_b)
+      continue;
+    if (!(detected.beyond_rim > 1e-4)) continue;
+    ++past_rim;
+    // A sub-step's motion: up to 2e-3 rad and 2e-4 cm.
+    const BlockPose qb = pose_of(about(random_unit(rng), 2e-3 * unit(rng)) * pb.rotation,
+                                 pb.position + 2e-4 * unit(rng) * random_unit(rng));
+    WorldBlock wa, wb;
+    place_block(coin, pa, wa);
+    place_block(coin, qb, wb);
+    Manifold searched, rebuilt;
+    const bool found = block_manifold(coin, wa, coin, wb, margin, scratch, searched);
+    if (rebuild_from_features(coin, wa, coin, wb, margin, detected, scratch, rebuilt) !=
+        Rebuild::held)
+      continue;
+    ++held;
+    if (!found || searched.feature != detected.feature ||
+        searched.feature_a != detected.feature_a || searched.feature_b != detected.feature_b)
+      continue;
+    ++same;
+    ASSERT_EQ(rebuilt.count, searched.count);
+    EXPECT_EQ(rebuilt.normal, searched.normal);
+    for (int k = 0; k < searched.count; ++k) {
+      EXPECT_EQ(rebuilt.point[k], searched.point[k]);
+      EXPECT_EQ(rebuilt.gap[k], searched.gap[k]);
+    }
+  }
+  report("past_rim_searched_manifolds", past_rim);
+  report("past_rim_rebuilt_without_search", held);
+  report("past_rim_rebuilt_same_features_as_search", same);
+  // About half the motions raise the node past the rim against the clipped corners (those hold)
+  // and half sink it (the search answers, below).
+  EXPECT_GE(past_rim, 20);
+  EXPECT_GE(held, 5);
+  EXPECT_GE(same, held * 9 / 10);
+
+  // The node past the rim sunk further than at the search (the allowance taken away): the
+  // search answers.
+  int sunk = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const BlockPose pa = pose_of(Mat3::Identity(), Vec3::Zero());
+    const Mat3 tilt = about(Vec3(unit(rng) - 0.5, unit(rng) - 0.5, 0), 0.4 * unit(rng));
+    const BlockPose pb = pose_of(tilt * about(Vec3::UnitZ(), unit(rng)),
+                                 Vec3(0.12 + 0.15 * unit(rng), 0.1 * (unit(rng) - 0.5),
+                                      0.05 + 0.1 * unit(rng)));
+    ManifoldScratch scratch;
+    Manifold detected, rebuilt;
+    if (!block_manifold(coin, pa, coin, pb, margin, scratch, detected)) continue;
+    if (!(detected.beyond_rim > 1e-4) || detected.feature == ManifoldFeature::edges) continue;
+    WorldBlock wa, wb;
+    place_block(coin, pa, wa);
+    place_block(coin, pb, wb);
+    Manifold stricter = detected;
+    stricter.beyond_rim = 0;
+    EXPECT_EQ(rebuild_from_features(coin, wa, coin, wb, margin, stricter, scratch, rebuilt),
+              Rebuild::search);
+    ++sunk;
+  }
+  EXPECT_GE(sunk, 20);
+}
+
 SceneDef falling_coin(Real height, Real dt, int substeps) {
   SceneDef scene = testing_support::falling_coin(height, 0, dt);
   scene.contact.substeps = substeps;

@@ -173,6 +173,14 @@ void clip_faces(const Block& ref, const std::vector<Vec3>& ref_nodes, const Vec3
   }
 }
 
+// How much deeper `lowest` (a face's separation: the other block's deepest node) lies than the
+// deepest of the manifold's kept corners.
+Real node_beyond_rim(const Manifold& m, Real lowest) {
+  Real deepest_kept = kInfinity;
+  for (int k = 0; k < m.count; ++k) deepest_kept = std::min(deepest_kept, m.gap[k]);
+  return std::max(Real(0), deepest_kept - lowest);
+}
+
 // The one point of an edge-pair manifold: midway between the closest points of A's edge i (from
 // pa along da) and B's edge j, with the gap `separation` along `axis` (out of A).
 void edge_manifold(const Vec3& pa, const Vec3& da, const Vec3& pb, const Vec3& db, int i, int j,
@@ -331,6 +339,7 @@ bool still_separated(const WorldBlock& wa, const WorldBlock& wb, const Separatin
 bool block_manifold(const Block& a, const WorldBlock& wa, const Block& b, const WorldBlock& wb,
                     Real margin, ManifoldScratch& s, Manifold& out, SeparatingFace* separated) {
   out.count = 0;
+  out.beyond_rim = 0;
   // Bounding spheres first: the broad phase's boxes of turned blocks pass many pairs whose
   // spheres are apart, and the axes cost a hundred times more.
   const Real reach = a.bounding_radius() + b.bounding_radius() + margin;
@@ -366,7 +375,11 @@ bool block_manifold(const Block& a, const WorldBlock& wa, const Block& b, const 
     out.feature_a = face_a.face;
     out.feature_b = -1;
   }
-  if (clip_reference_face(a, wa, b, wb, margin, s, out)) return true;
+  if (clip_reference_face(a, wa, b, wb, margin, s, out)) {
+    out.beyond_rim = node_beyond_rim(
+        out, out.feature == ManifoldFeature::face_of_b ? face_b.separation : face_a.separation);
+    return true;
+  }
   // The preferred face's clip can be empty: no part of the other block's most opposed face lies
   // over the reference face. Where the blocks meet edge across edge, the best edge pair's point
   // is the contact, with the better of the two lower bounds of the gap (the face's separation
@@ -390,6 +403,7 @@ Rebuild rebuild_from_features(const Block& a, const WorldBlock& wa, const Block&
                               const WorldBlock& wb, Real margin, const Manifold& detected,
                               ManifoldScratch& s, Manifold& out) {
   out.count = 0;
+  out.beyond_rim = 0;
   out.feature = detected.feature;
   out.feature_a = detected.feature_a;
   out.feature_b = detected.feature_b;
@@ -437,11 +451,15 @@ Rebuild rebuild_from_features(const Block& a, const WorldBlock& wa, const Block&
       face_separation(reference.normals[face], reference.offsets[face], other.nodes);
   if (lowest > margin) return Rebuild::apart;
   if (!clip_reference_face(a, wa, b, wb, margin, s, out)) out.count = 0;
-  Real shallowest_kept = kInfinity;
-  for (int k = 0; k < out.count; ++k) shallowest_kept = std::min(shallowest_kept, out.gap[k]);
-  if (out.count > 0 && lowest >= shallowest_kept - tolerance) return Rebuild::held;
-  // A node deeper than the clipped face's corners (or none of them within the margin while a
-  // node is): the whole search.
+  Real deepest_kept = kInfinity;
+  for (int k = 0; k < out.count; ++k) deepest_kept = std::min(deepest_kept, out.gap[k]);
+  if (out.count > 0 && lowest >= deepest_kept - tolerance - detected.beyond_rim) {
+    out.beyond_rim = node_beyond_rim(out, lowest);
+    return Rebuild::held;
+  }
+  // A node deeper than the clipped face's corners by more than one past the rim was when the
+  // features were searched (or none of them within the margin while a node is): the whole
+  // search.
   return Rebuild::search;
 }
 

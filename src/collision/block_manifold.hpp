@@ -51,6 +51,12 @@ struct Manifold {
   // The edges (indices into WorldBlock's edge lists) or the reference face (a polygon index of
   // its block; the other -1).
   int feature_a = -1, feature_b = -1;
+  // A face manifold's node past the rim: how much deeper below the reference plane the other
+  // block's deepest node lies than the deepest kept corner (0 where that node is one of them).
+  // Such a node is beside the reference face, not on it (a coin lying across another's rim,
+  // tilted). A sub-step rebuilding the manifold lets it lie as deep again before it calls the
+  // search (rebuild_from_features).
+  Real beyond_rim = 0;
 };
 
 // A block placed in the world for one step: what every pair it is in reads, computed once.
