@@ -6,6 +6,8 @@
 // paper's integrator has deformed it, as the paper's own code would.
 #pragma once
 
+#include <limits>
+
 #include "dynamics/body_state.hpp"
 #include "world/model.hpp"
 
@@ -24,6 +26,17 @@ inline BlockPose block_pose(const BlockInstance& instance, const BodyState& stat
   BlockPose pose;
   pose.rotation = state.g * instance.rotation;
   pose.inverse = pose.rotation.inverse();
+  pose.position = state.x + state.g * instance.offset;
+  return pose;
+}
+
+// The pose for placing a block, which reads only the map into the world: the same rotation
+// and position as block_pose, without the 3 x 3 inverse that a sub-step's refreshed patches
+// would otherwise compute twice per patch (`inverse` is NaN, so a reader is caught at once).
+inline BlockPose block_placement(const BlockInstance& instance, const BodyState& state) {
+  BlockPose pose;
+  pose.rotation = state.g * instance.rotation;
+  pose.inverse = Mat3::Constant(std::numeric_limits<Real>::quiet_NaN());
   pose.position = state.x + state.g * instance.offset;
   return pose;
 }

@@ -20,7 +20,7 @@ void refresh_patches(const Model& model, const State& state, const ContactWorksp
     const Block& a = block_of(model, d.body_a, d.block_a);
     // The edges are placed only where the search must answer: most patches are rebuilt from
     // a face's clip, which reads none of them.
-    place_faces(a, block_pose(instance_a, state.bodies[d.body_a]), s.a);
+    place_faces(a, block_placement(instance_a, state.bodies[d.body_a]), s.a);
     Manifold m;
     bool found;
     if (d.wall >= 0) {
@@ -29,7 +29,7 @@ void refresh_patches(const Model& model, const State& state, const ContactWorksp
     } else {
       const BlockInstance& instance_b = model.bodies[d.body_b].blocks[d.block_b];
       const Block& b = block_of(model, d.body_b, d.block_b);
-      place_faces(b, block_pose(instance_b, state.bodies[d.body_b]), s.b);
+      place_faces(b, block_placement(instance_b, state.bodies[d.body_b]), s.b);
       const Real margin = reach[d.body_a] + reach[d.body_b];
       const Rebuild rebuilt = rebuild_from_features(a, s.a, b, s.b, margin, d.manifold, s, m);
       found = rebuilt == Rebuild::held;
