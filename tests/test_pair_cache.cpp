@@ -9,8 +9,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 
@@ -204,6 +206,52 @@ TEST(PairCache, ResumedColumnIsBitIdentical) {
   EXPECT_EQ(a.state_hash_hex(), b.state_hash_hex());
   std::filesystem::remove(checkpoint);
   std::filesystem::remove(scene_file);
+}
+
+// The checkpoint keeps each cached feature's node past the rim (version 5); a version 4 file,
+// made here by taking those records away (a count and one Real per feature before the checksum,
+// the version field set to 4 and the sum taken again), is read with none past the rim.
+TEST(PairCache, CheckpointKeepsANodePastTheRim) {
+  Checkpoint c;
+  CachedFeatures e;
+  e.body_a = 0, e.block_a = 0, e.body_b = 1, e.block_b = 0;
+  e.feature = ManifoldFeature::face_of_b;
+  e.feature_b = 3;
+  e.beyond_rim = 0.0123;
+  c.features = {e, e};
+  c.features[1].body_b = 2;
+  c.features[1].beyond_rim = 0;
+  const std::string file = temp_path("pair_cache_rim") + ".bin";
+  write_checkpoint(file, c);
+  const Checkpoint back = read_checkpoint(file);
+  ASSERT_EQ(back.features.size(), 2u);
+  EXPECT_EQ(back.features[0].beyond_rim, 0.0123);
+  EXPECT_EQ(back.features[1].beyond_rim, 0);
+  EXPECT_EQ(back.features[0].feature_b, 3);
+
+  std::string bytes;
+  {
+    std::ifstream in(file, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const size_t rim_records = 8 + 2 * sizeof(Real);
+  ASSERT_GT(bytes.size(), rim_records + 8 + 12);
+  bytes.resize(bytes.size() - 8 - rim_records);
+  const std::uint32_t version = 4;
+  std::memcpy(&bytes[8], &version, sizeof version);
+  std::uint64_t h = 14695981039346656037ull;
+  for (const char ch : bytes) {
+    h ^= static_cast<unsigned char>(ch);
+    h *= 1099511628211ull;
+  }
+  bytes.append(reinterpret_cast<const char*>(&h), sizeof h);
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+  const Checkpoint old = read_checkpoint(file);
+  ASSERT_EQ(old.features.size(), 2u);
+  EXPECT_EQ(old.features[0].beyond_rim, 0);
+  EXPECT_EQ(old.features[0].feature_b, 3);
+  EXPECT_EQ(old.features[1].body_b, 2);
+  std::filesystem::remove(file);
 }
 
 }  // namespace test_pair_cache

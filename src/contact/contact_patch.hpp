@@ -34,6 +34,8 @@ struct ContactPatch {
   // from: pair_cache.hpp).
   Mat3 searched_rotation = Mat3::Identity();
   Vec3 searched_offset = Vec3::Zero();
+  // And the manifold's node past the rim at that search (Manifold::beyond_rim).
+  Real searched_beyond_rim = 0;
 };
 
 // The patch of a manifold of contact before overlap: its points' mean, minus its smallest gap as

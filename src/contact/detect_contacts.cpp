@@ -66,6 +66,7 @@ bool patch_ahead(const ContactWorkspace& w, const BlockPair& pair, const Block& 
     features.feature = cached->feature;
     features.feature_a = cached->feature_a;
     features.feature_b = cached->feature_b;
+    features.beyond_rim = cached->beyond_rim;
     found = rebuild_manifold(a, world_a, b, world_b, margin, features, s.manifold, m, &searched);
     if (!searched) ++s.pairs_cached;
   } else {
@@ -83,6 +84,7 @@ bool patch_ahead(const ContactWorkspace& w, const BlockPair& pair, const Block& 
   p.block_b = block_b;
   p.searched_rotation = searched ? rotation : cached->rotation;
   p.searched_offset = searched ? offset : cached->offset;
+  p.searched_beyond_rim = searched ? m.beyond_rim : cached->beyond_rim;
   return true;
 }
 

@@ -93,6 +93,7 @@ void keep_features(const std::vector<ContactPatch>& patches, std::vector<CachedF
     e.feature_b = p.manifold.feature_b;
     e.rotation = p.searched_rotation;
     e.offset = p.searched_offset;
+    e.beyond_rim = p.searched_beyond_rim;
     cache.push_back(e);
   }
   sort_by_pair(cache);

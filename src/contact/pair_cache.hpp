@@ -33,6 +33,10 @@ struct CachedFeatures {
   int feature_a = -1, feature_b = -1;
   Mat3 rotation = Mat3::Identity();  // B's block frame in A's block frame at the search
   Vec3 offset = Vec3::Zero();
+  // A face's node past the rim at the search (Manifold::beyond_rim): the features hold while
+  // it lies no deeper. Kept from the search, not from the last rebuild, so that it cannot creep
+  // deeper by round-off from step to step.
+  Real beyond_rim = 0;
 };
 
 // A block pair that a face axis kept beyond its margin last step. Not in checkpoints: a pair

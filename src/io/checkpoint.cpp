@@ -20,7 +20,9 @@ constexpr char kMagic[8] = {'T', 'E', 'M', 'C', 'K', 'P', 'T', '\n'};
 // memory. Version 2 is still read: its bodies are awake, their rest timers at zero.
 // 4: the pair cache's features (CachedFeatures), after the sleep. Versions 2 and 3 are still
 // read, with an empty cache: the first resumed step searches every pair.
-constexpr std::uint32_t kVersion = 4;
+// 5: each cached feature's node past the rim (CachedFeatures::beyond_rim), after the features.
+// Version 4 is still read, with none past the rim: such pairs are searched again.
+constexpr std::uint32_t kVersion = 5;
 constexpr std::uint32_t kOldestVersion = 2;
 
 std::uint64_t fnv1a(const char* data, std::size_t size) {
@@ -201,6 +203,8 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
     w.value(b.island);
   }
   write_records(w, c.features);
+  w.value(static_cast<std::uint64_t>(c.features.size()));
+  for (const CachedFeatures& e : c.features) w.value(e.beyond_rim);
   w.value(fnv1a(w.bytes().data(), w.bytes().size()));
 
   const std::string temporary = path + ".tmp";
@@ -270,6 +274,15 @@ Checkpoint read_checkpoint(const std::string& path) {
       if (e.feature != ManifoldFeature::edges && e.feature != ManifoldFeature::face_of_a &&
           e.feature != ManifoldFeature::face_of_b)
         throw std::runtime_error(path + ": the checkpoint's pair cache holds an unknown feature");
+  }
+  if (version >= 5) {
+    if (r.count(sizeof(Real)) != c.features.size())
+      throw std::runtime_error(path + ": the checkpoint's pair cache records do not match");
+    for (CachedFeatures& e : c.features) {
+      r.value(e.beyond_rim);
+      if (!(e.beyond_rim >= 0))
+        throw std::runtime_error(path + ": the checkpoint's pair cache holds a negative depth");
+    }
   }
   if (!r.at_end()) throw std::runtime_error(path + ": the checkpoint has trailing bytes");
   return c;
