@@ -5,6 +5,7 @@
 
 #include "forces/materials.hpp"
 #include "forces/warm_start.hpp"
+#include "support/parallel.hpp"
 
 namespace tem {
 namespace {
@@ -17,7 +18,8 @@ Vec3 start_spin(const Model& model, const State& state, int body) {
 // What restitution answers and what keeps the impulses from adding energy (semm.cpp): the
 // normal relative velocity (B minus A) at each point, and each patch's slip and spin at its
 // centre, with the velocities at the start of the step; and each patch's coefficients from its
-// materials (materials.hpp).
+// materials (materials.hpp). Each point and each patch on its own, shared among the threads
+// (with sub-steps this runs every sub-step, and on one thread it was a sixth of the forces).
 void start_velocities(const Model& model, const State& state,
                       const std::vector<ContactPatch>& patches, ContactForces& f) {
   f.approach.resize(f.points.size());
@@ -25,19 +27,25 @@ void start_velocities(const Model& model, const State& state,
   auto centre_velocity = [&](int body) {
     return body < 0 || model.bodies[body].fixed ? Vec3::Zero() : state.bodies[body].v;
   };
-  for (size_t i = 0; i < f.points.size(); ++i) {
+  parallel_for(static_cast<long long>(f.points.size()), 256, [&](long long i) {
     const ContactPoint& c = f.points[i];
     f.approach_linear[i] = c.normal.dot(centre_velocity(c.body_b) - centre_velocity(c.body_a));
     f.approach[i] = c.normal.dot(material_point_velocity(model, state, c.body_b, c.point) -
                                  material_point_velocity(model, state, c.body_a, c.point));
-  }
+  });
+  // Each patch's run of points (patch_points lays them out patch by patch); a patch without
+  // points keeps an empty run.
   f.friction.assign(patches.size(), PatchFriction{});
   for (size_t i = 0; i < f.points.size();) {
-    const ContactPoint& c = f.points[i];
-    PatchFriction& p = f.friction[c.patch];
-    p.first = static_cast<int>(i);
-    while (i < f.points.size() && f.points[i].patch == c.patch) ++i;
-    p.last = static_cast<int>(i);
+    const int patch = f.points[i].patch;
+    f.friction[patch].first = static_cast<int>(i);
+    while (i < f.points.size() && f.points[i].patch == patch) ++i;
+    f.friction[patch].last = static_cast<int>(i);
+  }
+  parallel_for(static_cast<long long>(patches.size()), 64, [&](long long patch) {
+    PatchFriction& p = f.friction[patch];
+    if (p.last == p.first) return;
+    const ContactPoint& c = f.points[p.first];
     p.body_a = c.body_a;
     p.body_b = c.body_b;
     p.wall = c.wall;
@@ -64,7 +72,7 @@ void start_velocities(const Model& model, const State& state,
       p.start_roll1 = p.tangent1.dot(dw);
       p.start_roll2 = p.tangent2.dot(dw);
     }
-  }
+  });
 }
 
 // 1% of each body's size: the distance below which a contact point is the same from one step

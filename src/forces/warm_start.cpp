@@ -1,6 +1,9 @@
 #include "forces/warm_start.hpp"
 
 #include <algorithm>
+#include <array>
+
+#include "support/parallel.hpp"
 
 namespace tem {
 
@@ -10,7 +13,9 @@ void warm_start(const std::vector<ContactPoint>& previous,
                 std::vector<PointImpulse>& impulses) {
   impulses.assign(points.size(), PointImpulse{});
   // The runs of one pair in each list; patches come sorted by pair, so the runs are in the same
-  // order in both and one pass pairs them up.
+  // order in both and one pass pairs them up. The matching within each run is the cost, and
+  // each run's is its own, so the runs are then shared among the threads.
+  std::vector<std::array<size_t, 4>> runs;  // first, last, old_first, old_last
   size_t old_first = 0;
   for (size_t first = 0; first < points.size();) {
     size_t last = first;
@@ -20,6 +25,11 @@ void warm_start(const std::vector<ContactPoint>& previous,
     size_t old_last = old_first;
     while (old_last < previous.size() && pair_key(previous[old_last]) == pair_key(points[first]))
       ++old_last;
+    if (old_last > old_first) runs.push_back({first, last, old_first, old_last});
+    first = last;
+  }
+  parallel_for(static_cast<long long>(runs.size()), 64, [&](long long run) {
+    const auto [first, last, old_first, old_last] = runs[static_cast<size_t>(run)];
     const Real r = radius[points[first].body_a];
     for (size_t i = first; i < last; ++i) {
       size_t best = old_last;
@@ -36,8 +46,7 @@ void warm_start(const std::vector<ContactPoint>& previous,
       const Real along = previous[best].normal.dot(points[i].normal);
       impulses[i].normal = std::max<Real>(0, previous_impulses[best].normal * along);
     }
-    first = last;
-  }
+  });
 }
 
 void warm_start_friction(const std::vector<PatchFriction>& previous,
