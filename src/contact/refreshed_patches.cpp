@@ -10,8 +10,10 @@ void refresh_patches(const Model& model, const State& state, const ContactWorksp
                      std::vector<ContactPatch>& out) {
   const long long n = static_cast<long long>(detected.size());
   scratch.threads.resize(static_cast<size_t>(max_threads()));
-  scratch.slots.resize(detected.size());
   scratch.found.assign(detected.size(), 0);
+  // Each patch is rebuilt in its own place of `out`, and those not found again are then closed
+  // up: no copy of a patch where every one is found, as in a pile at rest.
+  out.resize(detected.size());
   const std::vector<Real>& reach = contact.reach;
   parallel_for(n, 64, [&](long long k) {
     const ContactPatch& d = detected[static_cast<size_t>(k)];
@@ -40,7 +42,7 @@ void refresh_patches(const Model& model, const State& state, const ContactWorksp
       }
     }
     if (!found) return;
-    ContactPatch& p = scratch.slots[static_cast<size_t>(k)];
+    ContactPatch& p = out[static_cast<size_t>(k)];
     p = manifold_patch(m);
     p.body_a = d.body_a;
     p.body_b = d.body_b;
@@ -49,9 +51,13 @@ void refresh_patches(const Model& model, const State& state, const ContactWorksp
     p.block_b = d.block_b;
     scratch.found[static_cast<size_t>(k)] = 1;
   });
-  out.clear();
-  for (size_t k = 0; k < detected.size(); ++k)
-    if (scratch.found[k]) out.push_back(scratch.slots[k]);
+  size_t kept = 0;
+  for (size_t k = 0; k < detected.size(); ++k) {
+    if (!scratch.found[k]) continue;
+    if (kept != k) out[kept] = std::move(out[k]);
+    ++kept;
+  }
+  out.resize(kept);
 }
 
 }  // namespace tem

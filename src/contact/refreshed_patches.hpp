@@ -22,11 +22,10 @@
 
 namespace tem {
 
-// Reused memory: one manifold scratch and pair of placed blocks per thread, and one slot per
-// detected patch.
+// Reused memory: one manifold scratch and pair of placed blocks per thread, and whether each
+// detected patch was found again.
 struct RefreshScratch {
   std::vector<ManifoldScratch> threads;
-  std::vector<ContactPatch> slots;
   std::vector<char> found;
 };
 
