@@ -66,43 +66,6 @@ class QhullRun {
   bool ok_ = false;
 };
 
-// The hull's vertices (in input order) and facets as loops counter-clockwise about their
-// outward normals, or nothing when Qhull finds no 3-d hull.
-std::optional<PolyhedronDef> qhull_polyhedron(const std::vector<Vec3>& points) {
-  QhullRun hull(points, "qhull");  // merges coplanar facets into polygons
-  if (!hull.ok()) return std::nullopt;
-  qhT* qh = hull.qh();
-  std::vector<int> new_index(points.size(), -1);
-  for (vertexT* v = qh->vertex_list; v && v->next; v = v->next) new_index[hull.id(v)] = 0;
-  PolyhedronDef def;
-  for (size_t i = 0; i < points.size(); ++i)
-    if (new_index[i] == 0) {
-      new_index[i] = static_cast<int>(def.points.size());
-      def.points.push_back(points[i]);
-    }
-  for (facetT* f = qh->facet_list; f && f->next; f = f->next) {
-    const Vec3 n(f->normal[0], f->normal[1], f->normal[2]);
-    std::vector<int> loop;
-    Vec3 centre = Vec3::Zero();
-    const int count = qh_setsize(qh, f->vertices);
-    for (int k = 0; k < count; ++k) {
-      loop.push_back(new_index[hull.id(static_cast<vertexT*>(SETelem_(f->vertices, k)))]);
-      centre += def.points[loop.back()];
-    }
-    centre /= static_cast<Real>(count);
-    const Vec3 u = (def.points[loop[0]] - centre).normalized();
-    const Vec3 w = n.cross(u);
-    std::vector<std::pair<Real, int>> by_angle;
-    for (int id : loop) {
-      const Vec3 d = def.points[id] - centre;
-      by_angle.emplace_back(std::atan2(d.dot(w), d.dot(u)), id);
-    }
-    std::sort(by_angle.begin(), by_angle.end());
-    for (size_t k = 0; k < loop.size(); ++k) loop[k] = by_angle[k].second;
-    def.polygons.push_back(std::move(loop));
-  }
-  return def;
-}
 
 // One point per `weld`-sized neighbourhood, the first in input order.
 std::vector<Vec3> welded(const std::vector<Vec3>& points, Real weld) {
@@ -189,6 +152,42 @@ std::optional<std::vector<bool>> flawed_vertices(const PolyhedronDef& def, Real 
 
 }  // namespace
 
+std::optional<PolyhedronDef> hull_polyhedron(const std::vector<Vec3>& points) {
+  QhullRun hull(points, "qhull");  // merges coplanar facets into polygons
+  if (!hull.ok()) return std::nullopt;
+  qhT* qh = hull.qh();
+  std::vector<int> new_index(points.size(), -1);
+  for (vertexT* v = qh->vertex_list; v && v->next; v = v->next) new_index[hull.id(v)] = 0;
+  PolyhedronDef def;
+  for (size_t i = 0; i < points.size(); ++i)
+    if (new_index[i] == 0) {
+      new_index[i] = static_cast<int>(def.points.size());
+      def.points.push_back(points[i]);
+    }
+  for (facetT* f = qh->facet_list; f && f->next; f = f->next) {
+    const Vec3 n(f->normal[0], f->normal[1], f->normal[2]);
+    std::vector<int> loop;
+    Vec3 centre = Vec3::Zero();
+    const int count = qh_setsize(qh, f->vertices);
+    for (int k = 0; k < count; ++k) {
+      loop.push_back(new_index[hull.id(static_cast<vertexT*>(SETelem_(f->vertices, k)))]);
+      centre += def.points[loop.back()];
+    }
+    centre /= static_cast<Real>(count);
+    const Vec3 u = (def.points[loop[0]] - centre).normalized();
+    const Vec3 w = n.cross(u);
+    std::vector<std::pair<Real, int>> by_angle;
+    for (int id : loop) {
+      const Vec3 d = def.points[id] - centre;
+      by_angle.emplace_back(std::atan2(d.dot(w), d.dot(u)), id);
+    }
+    std::sort(by_angle.begin(), by_angle.end());
+    for (size_t k = 0; k < loop.size(); ++k) loop[k] = by_angle[k].second;
+    def.polygons.push_back(std::move(loop));
+  }
+  return def;
+}
+
 Real hull_volume(const std::vector<Vec3>& points) {
   // Joggled input (a fixed seed: the same volume every run) spares Qhull its merging, which
   // takes half of its time on the many coplanar points of cut parts; the volume moves by about
@@ -199,17 +198,13 @@ Real hull_volume(const std::vector<Vec3>& points) {
   return hull.qh()->totvol;
 }
 
-std::optional<PolyhedronDef> hull_polyhedron(const std::vector<Vec3>& points) {
-  return qhull_polyhedron(points);
-}
-
 std::optional<PolyhedronDef> hull_block(const std::vector<Vec3>& points, Real weld, Real margin) {
   // Only the hull's vertices matter; weld those (far fewer than the points).
-  std::optional<PolyhedronDef> def = qhull_polyhedron(points);
+  std::optional<PolyhedronDef> def = hull_polyhedron(points);
   if (!def) return std::nullopt;
   std::vector<Vec3> kept = welded(def->points, weld);
   for (int round = 0; round < kMaxRounds; ++round) {
-    def = qhull_polyhedron(kept);
+    def = hull_polyhedron(kept);
     if (!def) return std::nullopt;
     const auto flawed = flawed_vertices(*def, margin);
     if (!flawed) return std::nullopt;

@@ -16,8 +16,9 @@ Real hull_volume(const std::vector<Vec3>& points);
 // so the scale of a weld distance.
 Real radius_about_mean(const std::vector<Vec3>& points);
 
-// The convex hull of any points as Qhull gives it (coplanar facets merged into polygons), not
-// checked as a block: for sampling a hull's surface, where hull_block's welding and checks
+// The convex hull of any points as Qhull gives it (its vertices in the points' order, coplanar
+// facets merged into polygons counter-clockwise about their outward normals), not checked as a
+// block: for sampling a hull's surface, where hull_block's welding and checks
 // would cost more than the samples. Nothing when the points span no 3-d hull.
 std::optional<PolyhedronDef> hull_polyhedron(const std::vector<Vec3>& points);
 
