@@ -173,12 +173,17 @@ void clip_faces(const Block& ref, const std::vector<Vec3>& ref_nodes, const Vec3
   }
 }
 
+// The least gap of the manifold's kept points (its deepest), infinite where it keeps none.
+Real deepest_kept(const Manifold& m) {
+  Real deepest = kInfinity;
+  for (int k = 0; k < m.count; ++k) deepest = std::min(deepest, m.gap[k]);
+  return deepest;
+}
+
 // How much deeper `lowest` (a face's separation: the other block's deepest node) lies than the
 // deepest of the manifold's kept corners.
 Real node_beyond_rim(const Manifold& m, Real lowest) {
-  Real deepest_kept = kInfinity;
-  for (int k = 0; k < m.count; ++k) deepest_kept = std::min(deepest_kept, m.gap[k]);
-  return std::max(Real(0), deepest_kept - lowest);
+  return std::max(Real(0), deepest_kept(m) - lowest);
 }
 
 // The one point of an edge-pair manifold: midway between the closest points of A's edge i (from
@@ -451,10 +456,9 @@ Rebuild rebuild_from_features(const Block& a, const WorldBlock& wa, const Block&
       face_separation(reference.normals[face], reference.offsets[face], other.nodes);
   if (lowest > margin) return Rebuild::apart;
   if (!clip_reference_face(a, wa, b, wb, margin, s, out)) out.count = 0;
-  Real deepest_kept = kInfinity;
-  for (int k = 0; k < out.count; ++k) deepest_kept = std::min(deepest_kept, out.gap[k]);
-  if (out.count > 0 && lowest >= deepest_kept - tolerance - detected.beyond_rim) {
-    out.beyond_rim = node_beyond_rim(out, lowest);
+  const Real deepest = deepest_kept(out);
+  if (out.count > 0 && lowest >= deepest - tolerance - detected.beyond_rim) {
+    out.beyond_rim = std::max(Real(0), deepest - lowest);
     return Rebuild::held;
   }
   // A node deeper than the clipped face's corners by more than one past the rim was when the

@@ -22,14 +22,6 @@ struct BlockPose {
   Vec3 to_block(const Vec3& p) const { return inverse * (p - position); }
 };
 
-inline BlockPose block_pose(const BlockInstance& instance, const BodyState& state) {
-  BlockPose pose;
-  pose.rotation = state.g * instance.rotation;
-  pose.inverse = pose.rotation.inverse();
-  pose.position = state.x + state.g * instance.offset;
-  return pose;
-}
-
 // The pose for placing a block, which reads only the map into the world: the same rotation
 // and position as block_pose, without the 3 x 3 inverse that a sub-step's refreshed patches
 // would otherwise compute twice per patch (`inverse` is NaN, so a reader is caught at once).
@@ -38,6 +30,12 @@ inline BlockPose block_placement(const BlockInstance& instance, const BodyState&
   pose.rotation = state.g * instance.rotation;
   pose.inverse = Mat3::Constant(std::numeric_limits<Real>::quiet_NaN());
   pose.position = state.x + state.g * instance.offset;
+  return pose;
+}
+
+inline BlockPose block_pose(const BlockInstance& instance, const BodyState& state) {
+  BlockPose pose = block_placement(instance, state);
+  pose.inverse = pose.rotation.inverse();
   return pose;
 }
 
