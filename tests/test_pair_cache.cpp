@@ -9,10 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <random>
 #include <string>
 
@@ -20,6 +18,7 @@
 #include "contact/pair_cache.hpp"
 #include "geometry/primitives.hpp"
 #include "io/checkpoint.hpp"
+#include "support/checkpoint_bytes.hpp"
 #include "support/coin_column.hpp"
 #include "support/simulate.hpp"
 #include "support/tem_process.hpp"
@@ -229,23 +228,11 @@ TEST(PairCache, CheckpointKeepsANodePastTheRim) {
   EXPECT_EQ(back.features[1].beyond_rim, 0);
   EXPECT_EQ(back.features[0].feature_b, 3);
 
-  std::string bytes;
-  {
-    std::ifstream in(file, std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
+  std::string bytes = testing_support::checkpoint_bytes(file);
   const size_t rim_records = 8 + 2 * sizeof(Real);
   ASSERT_GT(bytes.size(), rim_records + 8 + 12);
   bytes.resize(bytes.size() - 8 - rim_records);
-  const std::uint32_t version = 4;
-  std::memcpy(&bytes[8], &version, sizeof version);
-  std::uint64_t h = 14695981039346656037ull;
-  for (const char ch : bytes) {
-    h ^= static_cast<unsigned char>(ch);
-    h *= 1099511628211ull;
-  }
-  bytes.append(reinterpret_cast<const char*>(&h), sizeof h);
-  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+  testing_support::write_checkpoint_bytes(file, bytes, 4);
   const Checkpoint old = read_checkpoint(file);
   ASSERT_EQ(old.features.size(), 2u);
   EXPECT_EQ(old.features[0].beyond_rim, 0);

@@ -5,16 +5,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 
 #include "api/simulation_impl.hpp"
 #include "dynamics/sleep.hpp"
 #include "io/checkpoint.hpp"
 #include "io/scene_reader.hpp"
 #include "io/scene_writer.hpp"
+#include "support/checkpoint_bytes.hpp"
 #include "support/parallel.hpp"
 #include "support/simulate.hpp"
 #include "support/tem_process.hpp"
@@ -297,26 +296,14 @@ TEST(Sleep, CheckpointOfVersionTwoIsStillRead) {
   c.state.bodies[1].island = 1;
   const std::string file = temp_path("sleep_checkpoint_v2") + ".bin";
   write_checkpoint(file, c);
-  std::string bytes;
-  {
-    std::ifstream in(file, std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
+  std::string bytes = testing_support::checkpoint_bytes(file);
   // Version 2 ends before the sleep records (and version 4's empty pair cache and version 5's
   // records of it, two counts of 0).
   const size_t sleep_records = 8 + 2 * (sizeof(Real) + sizeof(bool) + sizeof(long long));
   const size_t features = 8 + 8;
   ASSERT_GT(bytes.size(), sleep_records + features + 8 + 12);
   bytes.resize(bytes.size() - 8 - features - sleep_records);
-  const std::uint32_t version = 2;
-  std::memcpy(&bytes[8], &version, sizeof version);
-  std::uint64_t h = 14695981039346656037ull;
-  for (const char ch : bytes) {
-    h ^= static_cast<unsigned char>(ch);
-    h *= 1099511628211ull;
-  }
-  bytes.append(reinterpret_cast<const char*>(&h), sizeof h);
-  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+  testing_support::write_checkpoint_bytes(file, bytes, 2);
   const Checkpoint back = read_checkpoint(file);
   ASSERT_EQ(back.state.bodies.size(), 2u);
   EXPECT_EQ(back.state.bodies[0].x, Vec3(1, 2, 3));
