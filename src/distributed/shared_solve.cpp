@@ -70,15 +70,15 @@ const std::vector<BodyResponse>& SharedSolve::split(const std::vector<ContactPoi
   return split_;
 }
 
-void SharedSolve::average(std::vector<Vec3>& velocity, std::vector<Vec3>& angular_velocity) {
+void SharedSolve::average(std::vector<SlotVelocity>& slots) {
   ++averages;
   // The touching ranks' copies to the owners.
   std::vector<std::vector<double>> send(static_cast<size_t>(size_));
   for (int b : touched_ghosts_) {
     Packer out(send[static_cast<size_t>(owner_[b])]);
     out.put(b);
-    out.put(velocity[b]);
-    out.put(angular_velocity[b]);
+    out.put(slots[b].linear);
+    out.put(slots[b].angular);
   }
   for (const std::vector<double>& m : send)
     bytes_sent += static_cast<long long>(m.size() * sizeof(double));
@@ -87,7 +87,7 @@ void SharedSolve::average(std::vector<Vec3>& velocity, std::vector<Vec3>& angula
   struct Copy {
     Vec3 v, w;
   };
-  std::vector<int> slot(velocity.size(), -1);
+  std::vector<int> slot(slots.size(), -1);
   for (size_t i = 0; i < meetings_.size(); ++i)
     slot[static_cast<size_t>(meetings_[i].body)] = static_cast<int>(i);
   std::vector<std::vector<Copy>> of_meeting(meetings_.size());
@@ -108,8 +108,8 @@ void SharedSolve::average(std::vector<Vec3>& velocity, std::vector<Vec3>& angula
     bool own_added = !m.here;
     for (int r : m.ranks) {
       if (!own_added && r > rank_) {
-        v += velocity[m.body];
-        w += angular_velocity[m.body];
+        v += slots[m.body].linear;
+        w += slots[m.body].angular;
         own_added = true;
       }
       v += others[next].v;
@@ -117,17 +117,17 @@ void SharedSolve::average(std::vector<Vec3>& velocity, std::vector<Vec3>& angula
       ++next;
     }
     if (!own_added) {
-      v += velocity[m.body];
-      w += angular_velocity[m.body];
+      v += slots[m.body].linear;
+      w += slots[m.body].angular;
     }
     const Real k = static_cast<Real>(m.ranks.size() + (m.here ? 1 : 0));
-    velocity[m.body] = v / k;
-    angular_velocity[m.body] = w / k;
+    slots[m.body].linear = v / k;
+    slots[m.body].angular = w / k;
     for (int r : m.ranks) {
       Packer out(back[static_cast<size_t>(r)]);
       out.put(m.body);
-      out.put(velocity[m.body]);
-      out.put(angular_velocity[m.body]);
+      out.put(slots[m.body].linear);
+      out.put(slots[m.body].angular);
     }
   }
   for (const std::vector<double>& m : back)
@@ -137,8 +137,8 @@ void SharedSolve::average(std::vector<Vec3>& velocity, std::vector<Vec3>& angula
     Unpacker in(from);
     while (!in.done()) {
       const int b = in.integer();
-      velocity[b] = in.vec3();
-      angular_velocity[b] = in.vec3();
+      slots[b].linear = in.vec3();
+      slots[b].angular = in.vec3();
     }
   }
 }

@@ -24,7 +24,7 @@ class SharedSolve : public SolverSync {
   const std::vector<BodyResponse>& split(const std::vector<ContactPoint>& points,
                                          const std::vector<BodyResponse>& bodies) override;
   const std::vector<BodyResponse>& unsplit() const override { return *given_; }
-  void average(std::vector<Vec3>& velocity, std::vector<Vec3>& angular_velocity) override;
+  void average(std::vector<SlotVelocity>& slots) override;
   SweepSize largest(const SweepSize& mine) override;
   Real sum(Real mine) override;
   bool owns(int body) const override { return subset_.owned[body] != 0; }

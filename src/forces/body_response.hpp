@@ -28,6 +28,15 @@ struct BodyResponse {
   Vec3 angular_velocity = Vec3::Zero();  // y, angular part, with no contact impulse
 };
 
+// A body's pseudo velocity (y) in the row solver while it sweeps, linear and angular together
+// in one cache line of their own. Why: the threads that share a colour's patches update
+// different bodies, but in two flat arrays of Vec3 neighbouring bodies share lines, which then
+// went back and forth between the cores at nearly every patch; one line per body also serves a
+// row's two reads of a body with one.
+struct alignas(64) SlotVelocity {
+  Vec3 linear = Vec3::Zero(), angular = Vec3::Zero();
+};
+
 // Responses of every body for one step of `dt` from `state`, under gravity and the external
 // loads (none when null or empty).
 void body_responses(const Model& model, const State& state, Real dt,

@@ -20,13 +20,16 @@ namespace tem {
 // The solver works on the patches and points laid out in this order (solve_targets), so that
 // each colour's rows lie together in memory.
 constexpr int kColours = 64;
+// Slabs across the pile that order the patches of one colour (patch_colouring.cpp).
+constexpr int kSlabs = 64;
 
 struct Colouring {
   std::vector<int> order;  // patch indices, colour by colour, in patch order within a colour
   std::vector<int> start;  // colour c is order[start[c], start[c + 1]); the last one is serial
   // Scratch kept between steps so that colouring a running pile allocates nothing.
   std::vector<std::uint64_t> used;  // per body, the colours its patches have taken
-  std::vector<int> colour;          // per patch
+  std::vector<int> colour, key;     // per patch: its colour, and its colour and slab
+  std::vector<int> count, next;     // per colour and slab
 };
 
 // Fills `out` (its vectors reused).
@@ -34,8 +37,10 @@ void colour_patches(const std::vector<PatchFriction>& patches,
                     const std::vector<BodyResponse>& bodies, Colouring& out);
 
 // The largest impulse change and the largest impulse of a sweep, kept per thread (the maximum
-// does not depend on the order it is taken in).
-struct SweepSize {
+// does not depend on the order it is taken in). A cache line of its own: every patch's update
+// writes it, and two threads' sizes in one line made colour sweeps on two threads slower than
+// on one (the line went back and forth between the cores at every patch).
+struct alignas(64) SweepSize {
   Real change = 0, largest = 0;
   void add(Real c, Real l) {
     change = std::max(change, c);

@@ -591,8 +591,8 @@ SolverReport solve_separation(const std::vector<ContactPoint>& points,
                                                 patches, impulses, *rows);
     velocities = bodies;
     for (size_t b = 0; b < bodies.size(); ++b) {
-      velocities[b].velocity = rows->velocity[b];
-      velocities[b].angular_velocity = rows->angular_velocity[b];
+      velocities[b].velocity = rows->slots[b].linear;
+      velocities[b].angular_velocity = rows->slots[b].angular;
     }
     return report;
   }

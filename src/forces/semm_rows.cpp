@@ -177,13 +177,13 @@ void build_rolling(const std::vector<BodyResponse>& bodies, const PatchFriction&
 
 // Applies a rolling angular impulse d (about tangent1, tangent2) on B, its opposite on A.
 inline void apply_rolling(Memory& m, const Memory::RollingRow& r, int still, const Vec2& d) {
-  if (r.b != still) m.angular_velocity[r.b] += d.x() * r.turn_b1 + d.y() * r.turn_b2;
-  if (r.a != still) m.angular_velocity[r.a] -= d.x() * r.turn_a1 + d.y() * r.turn_a2;
+  if (r.b != still) m.slots[r.b].angular += d.x() * r.turn_b1 + d.y() * r.turn_b2;
+  if (r.a != still) m.slots[r.a].angular -= d.x() * r.turn_a1 + d.y() * r.turn_a2;
 }
 
-// Relative rolling velocity (B's spin minus A's about tangent1, tangent2) in arrays w.
-inline Vec2 rolling_velocity(const Memory::RollingRow& r, const std::vector<Vec3>& w) {
-  const Vec3 dw = w[r.b] - w[r.a];
+// Relative rolling velocity (B's spin minus A's about tangent1, tangent2) in slots s.
+inline Vec2 rolling_velocity(const Memory::RollingRow& r, const std::vector<SlotVelocity>& s) {
+  const Vec3 dw = s[r.b].angular - s[r.a].angular;
   return Vec2(r.tangent1.dot(dw), r.tangent2.dot(dw));
 }
 
@@ -199,8 +199,8 @@ inline void push(Memory& m, int s, int still, const Vec3& j, const Vec3& turn) {
   // A driven body's velocity is not the impulses' to change (and, shared by the patches of one
   // colour, must not be written by two threads).
   if (s == still || m.inverse_mass[s] == 0) return;
-  m.velocity[s] += m.inverse_mass[s] * j;
-  m.angular_velocity[s] += turn;
+  m.slots[s].linear += m.inverse_mass[s] * j;
+  m.slots[s].angular += turn;
 }
 
 // Applies a friction impulse (t1, t2, twist) on B, its opposite on A.
@@ -217,12 +217,12 @@ inline void apply_normal(Memory& m, const Memory::NormalRow& r, int still, Real 
 
 // Slip (t1, t2) and spin of B over A at a friction row's centre.
 inline Vec3 slip(const Memory& m, const Memory::FrictionRow& f) {
-  const Vec3 dv = m.velocity[f.b] - m.velocity[f.a];
-  return Vec3(f.tangent1.dot(dv) + f.arm_b_x_t1.dot(m.angular_velocity[f.b]) -
-                  f.arm_a_x_t1.dot(m.angular_velocity[f.a]),
-              f.tangent2.dot(dv) + f.arm_b_x_t2.dot(m.angular_velocity[f.b]) -
-                  f.arm_a_x_t2.dot(m.angular_velocity[f.a]),
-              f.normal.dot(m.angular_velocity[f.b] - m.angular_velocity[f.a])) +
+  const Vec3 dv = m.slots[f.b].linear - m.slots[f.a].linear;
+  return Vec3(f.tangent1.dot(dv) + f.arm_b_x_t1.dot(m.slots[f.b].angular) -
+                  f.arm_a_x_t1.dot(m.slots[f.a].angular),
+              f.tangent2.dot(dv) + f.arm_b_x_t2.dot(m.slots[f.b].angular) -
+                  f.arm_a_x_t2.dot(m.slots[f.a].angular),
+              f.normal.dot(m.slots[f.b].angular - m.slots[f.a].angular)) +
          f.surface_slip;
 }
 
@@ -239,9 +239,9 @@ void update_patch(Memory& m, int k, int still, SweepSize& size) {
     Eigen::Matrix<Real, 4, 1> error = Eigen::Matrix<Real, 4, 1>::Zero();
     for (int i = 0; i < count; ++i) {
       const Memory::NormalRow& r = m.rows[f.first + i];
-      error(i) = r.target - (r.normal.dot(m.velocity[r.b] - m.velocity[r.a]) +
-                             r.arm_b_x_n.dot(m.angular_velocity[r.b]) -
-                             r.arm_a_x_n.dot(m.angular_velocity[r.a]));
+      error(i) = r.target - (r.normal.dot(m.slots[r.b].linear - m.slots[r.a].linear) +
+                             r.arm_b_x_n.dot(m.slots[r.b].angular) -
+                             r.arm_a_x_n.dot(m.slots[r.a].angular));
     }
     const Eigen::Matrix<Real, 4, 1> d = f.k_pseudo_inverse * error;
     bool pushing = true;
@@ -257,9 +257,9 @@ void update_patch(Memory& m, int k, int still, SweepSize& size) {
   }
   for (int i = f.first; i < f.last; ++i) {
     Memory::NormalRow& r = m.rows[i];
-    const Real u = r.normal.dot(m.velocity[r.b] - m.velocity[r.a]) +
-                   r.arm_b_x_n.dot(m.angular_velocity[r.b]) -
-                   r.arm_a_x_n.dot(m.angular_velocity[r.a]);
+    const Real u = r.normal.dot(m.slots[r.b].linear - m.slots[r.a].linear) +
+                   r.arm_b_x_n.dot(m.slots[r.b].angular) -
+                   r.arm_a_x_n.dot(m.slots[r.a].angular);
     const Real after = std::max<Real>(0, r.impulse - (u - r.target) * r.inverse_k);
     const Real d = after - r.impulse;
     r.impulse = after;
@@ -285,7 +285,7 @@ void update_patch(Memory& m, int k, int still, SweepSize& size) {
     f.t1 = t.x();
     f.t2 = t.y();
     if (f.inverse_k_twist > 0) {
-      const Real spin = f.normal.dot(m.angular_velocity[f.b] - m.angular_velocity[f.a]);
+      const Real spin = f.normal.dot(m.slots[f.b].angular - m.slots[f.a].angular);
       Real twist = f.twist - spin * f.inverse_k_twist;
       if (twist * f.start_slip.z() > 0) twist = f.twist - (spin + f.start_slip.z()) * f.inverse_k_twist;
       twist = std::clamp(twist, -mu * reach, mu * reach);
@@ -302,7 +302,7 @@ void update_patch(Memory& m, int k, int still, SweepSize& size) {
     Memory::RollingRow& r = m.rolling[f.rolling];
     Real total = 0;
     for (int i = f.first; i < f.last; ++i) total += m.rows[i].impulse;
-    const Vec2 u = rolling_velocity(r, m.angular_velocity), now(r.r1, r.r2);
+    const Vec2 u = rolling_velocity(r, m.slots), now(r.r1, r.r2);
     Vec2 h = now - r.inverse_k * u;
     if (h.dot(r.start) > 0) h = now - r.inverse_k * (u + r.start);
     into_disc(h, r.limit * total);
@@ -379,7 +379,7 @@ SolverReport sweeps(Memory& m, const std::vector<int>& colours, const SolverSett
     // Over ranks: the copies of shared bodies agree again, and every rank stops at the same
     // sweep.
     if (settings.sync) {
-      settings.sync->average(m.velocity, m.angular_velocity);
+      settings.sync->average(m.slots);
       total = settings.sync->largest(total);
     }
     report.change = total.largest > 0 ? total.change / total.largest : 0;
@@ -406,7 +406,7 @@ SolverReport sweeps(Memory& m, const std::vector<int>& colours, const SolverSett
     } else if (beta < 1) {
       by_colour(colours, m.sizes,
                 [&](int k, SweepSize&) { accelerate_patch(m, k, still, beta, step); });
-      if (settings.sync) settings.sync->average(m.velocity, m.angular_velocity);
+      if (settings.sync) settings.sync->average(m.slots);
     } else {
       std::fill(m.direction.begin(), m.direction.end(), 0);  // restart
     }
@@ -421,10 +421,10 @@ SolverReport sweeps(Memory& m, const std::vector<int>& colours, const SolverSett
 void reset_velocities(Memory& m, const std::vector<BodyResponse>& bodies) {
   const size_t n = bodies.size();
   for (size_t b = 0; b < n; ++b) {
-    m.velocity[b] = bodies[b].velocity;
-    m.angular_velocity[b] = bodies[b].angular_velocity;
+    m.slots[b].linear = bodies[b].velocity;
+    m.slots[b].angular = bodies[b].angular_velocity;
   }
-  m.velocity[n] = m.angular_velocity[n] = Vec3::Zero();
+  m.slots[n] = SlotVelocity{};
 }
 
 // Applies every row's current impulse (the warm start); whether any was not zero.
@@ -445,18 +445,18 @@ bool apply_all(Memory& m, int still) {
   return any;
 }
 
-// Normal relative velocity of a row, and slip of a friction row, in velocity arrays v, w.
-inline Real row_velocity(const Memory::NormalRow& r, const std::vector<Vec3>& v,
-                         const std::vector<Vec3>& w) {
-  return r.normal.dot(v[r.b] - v[r.a]) + r.arm_b_x_n.dot(w[r.b]) - r.arm_a_x_n.dot(w[r.a]);
+// Normal relative velocity of a row, and slip of a friction row, in slots s.
+inline Real row_velocity(const Memory::NormalRow& r, const std::vector<SlotVelocity>& s) {
+  return r.normal.dot(s[r.b].linear - s[r.a].linear) + r.arm_b_x_n.dot(s[r.b].angular) -
+         r.arm_a_x_n.dot(s[r.a].angular);
 }
 
-inline Vec3 row_slip(const Memory::FrictionRow& f, const std::vector<Vec3>& v,
-                     const std::vector<Vec3>& w) {
-  const Vec3 dv = v[f.b] - v[f.a];
-  return Vec3(f.tangent1.dot(dv) + f.arm_b_x_t1.dot(w[f.b]) - f.arm_a_x_t1.dot(w[f.a]),
-              f.tangent2.dot(dv) + f.arm_b_x_t2.dot(w[f.b]) - f.arm_a_x_t2.dot(w[f.a]),
-              f.normal.dot(w[f.b] - w[f.a])) +
+inline Vec3 row_slip(const Memory::FrictionRow& f, const std::vector<SlotVelocity>& s) {
+  const Vec3 dv = s[f.b].linear - s[f.a].linear;
+  const Vec3 &wa = s[f.a].angular, &wb = s[f.b].angular;
+  return Vec3(f.tangent1.dot(dv) + f.arm_b_x_t1.dot(wb) - f.arm_a_x_t1.dot(wa),
+              f.tangent2.dot(dv) + f.arm_b_x_t2.dot(wb) - f.arm_a_x_t2.dot(wa),
+              f.normal.dot(wb - wa)) +
          f.surface_slip;
 }
 
@@ -471,38 +471,37 @@ inline Vec3 row_slip(const Memory::FrictionRow& f, const std::vector<Vec3>& v,
 // B = E - A; the largest s with E(s) <= 0 is -B/A. Every constraint's sign survives the scaling
 // (normal impulses stay >= 0, friction inside its cone), only the push is a hair weaker.
 Real energy_scale(const Memory& m, const std::vector<BodyResponse>& bodies,
-                  const std::vector<Real>& start, std::vector<Vec3>& free_v,
-                  std::vector<Vec3>& free_w, SolverSync* sync) {
+                  const std::vector<Real>& start, std::vector<SlotVelocity>& free,
+                  SolverSync* sync) {
   const size_t n = bodies.size();
-  free_v.resize(n + 1);
-  free_w.resize(n + 1);
+  free.resize(n + 1);
   for (size_t b = 0; b < n; ++b) {
-    free_v[b] = bodies[b].velocity;
-    free_w[b] = bodies[b].angular_velocity;
+    free[b].linear = bodies[b].velocity;
+    free[b].angular = bodies[b].angular_velocity;
   }
-  free_v[n] = free_w[n] = Vec3::Zero();
+  free[n] = SlotVelocity{};
   Real added = 0, curvature = 0;
   for (size_t r = 0; r < m.rows.size(); ++r) {
     const Memory::NormalRow& row = m.rows[r];
     if (row.impulse == 0) continue;
-    const Real after = row_velocity(row, m.velocity, m.angular_velocity);
+    const Real after = row_velocity(row, m.slots);
     added += row.impulse * (start[m.point_of_row[r]] + after) / 2;
-    curvature += row.impulse * (after - row_velocity(row, free_v, free_w)) / 2;
+    curvature += row.impulse * (after - row_velocity(row, free)) / 2;
   }
   for (const Memory::FrictionRow& f : m.friction) {
     const Vec3 j(f.t1, f.t2, f.twist);
     if (j == Vec3::Zero()) continue;
-    const Vec3 after = row_slip(f, m.velocity, m.angular_velocity);
+    const Vec3 after = row_slip(f, m.slots);
     added += j.dot(f.start_slip + after) / 2;
-    curvature += j.dot(after - row_slip(f, free_v, free_w)) / 2;
+    curvature += j.dot(after - row_slip(f, free)) / 2;
   }
   // Rolling rows: the angular impulse does the work h.(w_start + w_after) / 2 likewise.
   for (const Memory::RollingRow& r : m.rolling) {
     const Vec2 h(r.r1, r.r2);
     if (h == Vec2::Zero()) continue;
-    const Vec2 after = rolling_velocity(r, m.angular_velocity);
+    const Vec2 after = rolling_velocity(r, m.slots);
     added += h.dot(r.start + after) / 2;
-    curvature += h.dot(after - rolling_velocity(r, free_w)) / 2;
+    curvature += h.dot(after - rolling_velocity(r, free)) / 2;
   }
   if (sync) {  // each row is on one rank: the step's sums are the ranks' sums
     added = sync->sum(added);
@@ -528,8 +527,7 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
   const std::vector<BodyResponse>& bodies = sync ? sync->split(points, given) : given;
   const size_t n = bodies.size();
   const int still = static_cast<int>(n);
-  m.velocity.resize(n + 1);
-  m.angular_velocity.resize(n + 1);
+  m.slots.resize(n + 1);
   m.inverse_mass.resize(n + 1);
   for (size_t b = 0; b < n; ++b) m.inverse_mass[b] = bodies[b].inverse_mass;
   m.inverse_mass[n] = 0;
@@ -575,7 +573,7 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
 
   bool warm = apply_all(m, still);
   if (sync) {
-    sync->average(m.velocity, m.angular_velocity);
+    sync->average(m.slots);
     warm = sync->sum(warm ? 1 : 0) > 0;
   }
   SolverReport report = sweeps(m, colouring.start, settings, still);
@@ -588,8 +586,8 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
     std::vector<BodyResponse>& now = m.now;
     now = bodies;
     for (size_t b = 0; b < n; ++b) {
-      now[b].velocity = m.velocity[b];
-      now[b].angular_velocity = m.angular_velocity[b];
+      now[b].velocity = m.slots[b].linear;
+      now[b].angular_velocity = m.slots[b].angular;
     }
     // Over ranks: each body once, with its own (not split) mass, summed over the ranks.
     Real change = 0;
@@ -615,7 +613,7 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
     }
   }
   if (impulses_checked)
-    report.scale = energy_scale(m, bodies, start, m.free_velocity, m.free_angular_velocity, sync);
+    report.scale = energy_scale(m, bodies, start, m.free, sync);
   // Results back in the caller's order.
   for (size_t r = 0; r < m.rows.size(); ++r)
     impulses[m.point_of_row[r]].normal = report.scale * m.rows[r].impulse;

@@ -64,14 +64,14 @@ struct RowSolverMemory {
     Eigen::Matrix<Real, 2, 1> start = Eigen::Matrix<Real, 2, 1>::Zero();
     Real r1 = 0, r2 = 0;
   };
-  std::vector<Vec3> velocity, angular_velocity;  // pseudo velocities per slot
+  std::vector<SlotVelocity> slots;  // pseudo velocities per slot
   std::vector<Real> inverse_mass;
   std::vector<NormalRow> rows;
   std::vector<FrictionRow> friction;
   std::vector<RollingRow> rolling;
   std::vector<int> point_of_row, patch_of_friction;
   std::vector<SweepSize> sizes;
-  std::vector<Vec3> free_velocity, free_angular_velocity;  // energy check (semm_rows.cpp)
+  std::vector<SlotVelocity> free;  // the velocities without impulses: energy check (semm_rows.cpp)
   std::vector<BodyResponse> now;  // the bodies after stopped sweeps (semm_rows.cpp)
   Colouring colouring;            // the sweeps' order, its vectors reused step after step
   // Conjugate gradients (semm_rows.cpp: sweeps): the impulses before the sweep, its step,

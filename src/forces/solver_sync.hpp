@@ -29,7 +29,7 @@ class SolverSync {
   virtual const std::vector<BodyResponse>& unsplit() const = 0;
   // The shared bodies' velocities (slots as the solver's arrays) replaced by their mean over
   // the ranks touching them.
-  virtual void average(std::vector<Vec3>& velocity, std::vector<Vec3>& angular_velocity) = 0;
+  virtual void average(std::vector<SlotVelocity>& slots) = 0;
   // The sweep size of all ranks (each field's maximum).
   virtual SweepSize largest(const SweepSize& mine) = 0;
   // The sum over all ranks.
