@@ -79,8 +79,9 @@ void place_block(const Block& block, const BlockPose& pose, WorldBlock& out);
 void place_faces(const Block& block, const BlockPose& pose, WorldBlock& out);
 void place_edges(const Block& block, WorldBlock& out);
 
-// Reused memory of one thread.
-struct ManifoldScratch {
+// Reused memory of one thread, on cache lines of its own (threads' scratch lies side by side in
+// a vector, and every clip writes its vectors' ends).
+struct alignas(64) ManifoldScratch {
   WorldBlock a, b;  // for the overloads that take poses
   std::vector<Vec3> clip_in, clip_out;
   std::vector<Vec3> candidates;  // points within the margin, before reduce_points

@@ -16,8 +16,9 @@ namespace tem {
 // The scene's contact.normals: the paper's node/edge-normal rule or the face-based default.
 PatchVariant patch_variant(const SceneDef& scene);
 
-// What one thread needs to test a pair: scratch of the narrow phase and of the patches.
-struct PairScratch {
+// What one thread needs to test a pair: scratch of the narrow phase and of the patches, on
+// cache lines of its own (its counters and vectors' ends change at every pair).
+struct alignas(64) PairScratch {
   NarrowPhaseScratch narrow;
   PairFeatures pair;
   WallFeatures wall;
