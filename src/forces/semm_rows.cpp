@@ -210,6 +210,20 @@ inline void apply_friction(Memory& m, const Memory::FrictionRow& f, int still, c
   push(m, f.a, still, -j, -(d.x() * f.turn_a_t1 + d.y() * f.turn_a_t2 + d.z() * f.turn_a_n));
 }
 
+// The sweeps' two parts of it: a tangential impulse (d1, d2), and a twist about the normal,
+// which only turns the bodies. Why apart: the whole impulse with its missing part zero pushed
+// and turned both bodies by zeros, a sixth of the sweeps' instructions.
+inline void apply_slip(Memory& m, const Memory::FrictionRow& f, int still, Real d1, Real d2) {
+  const Vec3 j = d1 * f.tangent1 + d2 * f.tangent2;
+  push(m, f.b, still, j, d1 * f.turn_b_t1 + d2 * f.turn_b_t2);
+  push(m, f.a, still, -j, -(d1 * f.turn_a_t1 + d2 * f.turn_a_t2));
+}
+
+inline void apply_twist(Memory& m, const Memory::FrictionRow& f, int still, Real d) {
+  if (f.b != still && m.inverse_mass[f.b] != 0) m.slots[f.b].angular += d * f.turn_b_n;
+  if (f.a != still && m.inverse_mass[f.a] != 0) m.slots[f.a].angular -= d * f.turn_a_n;
+}
+
 inline void apply_normal(Memory& m, const Memory::NormalRow& r, int still, Real d) {
   push(m, r.b, still, d * r.normal, d * r.turn_b);
   push(m, r.a, still, -d * r.normal, -d * r.turn_a);
@@ -281,7 +295,7 @@ void update_patch(Memory& m, int k, int still, SweepSize& size) {
     Vec2 t = now - f.inverse_k_slip * u.head<2>();
     if (t.dot(start) > 0) t = now - f.inverse_k_slip * (u.head<2>() + start);
     into_disc(t, mu * total);
-    apply_friction(m, f, still, Vec3(t.x() - f.t1, t.y() - f.t2, 0));
+    apply_slip(m, f, still, t.x() - f.t1, t.y() - f.t2);
     f.t1 = t.x();
     f.t2 = t.y();
     if (f.inverse_k_twist > 0) {
@@ -289,7 +303,7 @@ void update_patch(Memory& m, int k, int still, SweepSize& size) {
       Real twist = f.twist - spin * f.inverse_k_twist;
       if (twist * f.start_slip.z() > 0) twist = f.twist - (spin + f.start_slip.z()) * f.inverse_k_twist;
       twist = std::clamp(twist, -mu * reach, mu * reach);
-      apply_friction(m, f, still, Vec3(0, 0, twist - f.twist));
+      apply_twist(m, f, still, twist - f.twist);
       f.twist = twist;
     }
     const Real scale = reach > 0 && total > 0 ? total / reach : 0;
@@ -346,7 +360,7 @@ void accelerate_patch(Memory& m, int k, int still, Real beta, const std::vector<
     Vec2 now(f.t1, f.t2), next = now + beta * Vec2(m.direction[t], m.direction[t + 1]);
     into_disc(next, f.mu * total);
     const Vec2 d = next - now;
-    apply_friction(m, f, still, Vec3(d.x(), d.y(), 0));
+    apply_slip(m, f, still, d.x(), d.y());
     f.t1 = next.x();
     f.t2 = next.y();
     m.direction[t] = d.x() + step[t];
