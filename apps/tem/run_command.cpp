@@ -57,6 +57,14 @@ void print_summary(const Model& model, const State& state, const Workspace& w, d
   if (model.scene.sleep)
     std::fprintf(stderr, "  sleep: %lld of %zu bodies asleep at the end\n",
                  sleeping_bodies(state), state.bodies.size());
+  // Patch order keeps the sweeps on one thread: say so where threads were asked for and the
+  // sweeps were a real part of the work.
+  if (max_threads() > 1 && model.scene.contact.model == ContactModel::semm &&
+      !model.scene.contact.colour_sweeps && static_cast<double>(t.sweeps) / steps > 4)
+    std::fprintf(stderr,
+                 "  note: the contact solver's sweeps ran on one thread (contact.sweep_order "
+                 "\"patches\", the default); \"colours\" shares them among the %d threads\n",
+                 max_threads());
   if (t.outran_margin > 0)
     std::fprintf(stderr,
                  "  warning: %lld times a body moved farther in one step than its contact margin "
