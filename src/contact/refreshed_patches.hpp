@@ -13,6 +13,7 @@
 // carrying the detected points with the bodies cannot (the points it dropped stay dropped).
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "collision/block_manifold.hpp"
@@ -22,10 +23,14 @@
 
 namespace tem {
 
-// Reused memory: one manifold scratch and pair of placed blocks per thread, and whether each
-// detected patch was found again.
+// Reused memory: one manifold scratch per thread, the blocks placed for the sub-step (`world`,
+// for `placed`'s body and instance; `slot`: each block's place there, by `first_block` of its
+// body, or -1), and whether each detected patch was found again.
 struct RefreshScratch {
   std::vector<ManifoldScratch> threads;
+  std::vector<WorldBlock> world;
+  std::vector<std::array<int, 2>> placed;
+  std::vector<int> first_block, slot;
   std::vector<char> found;
 };
 
