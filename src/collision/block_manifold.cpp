@@ -149,15 +149,21 @@ void clip_faces(const Block& ref, const std::vector<Vec3>& ref_nodes, const Vec3
   const std::vector<int>& loop = ref.polygons()[ref_face].nodes;
   for (size_t k = 0; k < loop.size() && !s.clip_in.empty(); ++k) {
     const Vec3& v0 = ref_nodes[loop[k]];
-    const Vec3& v1 = ref_nodes[loop[(k + 1) % loop.size()]];
+    const Vec3& v1 = ref_nodes[loop[k + 1 < loop.size() ? k + 1 : 0]];
     // The loop runs counter-clockwise seen from outside: (v1 - v0) x n points out of the face.
     const Vec3 side = (v1 - v0).cross(ref_normal);
     const Real side_offset = side.dot(v0);
+    // Each point's distance out of the side once (each is the start of one edge and the end
+    // of another).
+    const size_t count = s.clip_in.size();
+    s.clip_distance.resize(count);
+    for (size_t i = 0; i < count; ++i) s.clip_distance[i] = side.dot(s.clip_in[i]) - side_offset;
     s.clip_out.clear();
-    for (size_t i = 0; i < s.clip_in.size(); ++i) {
+    for (size_t i = 0; i < count; ++i) {
+      const size_t j = i + 1 < count ? i + 1 : 0;
       const Vec3& p = s.clip_in[i];
-      const Vec3& q = s.clip_in[(i + 1) % s.clip_in.size()];
-      const Real dp = side.dot(p) - side_offset, dq = side.dot(q) - side_offset;
+      const Vec3& q = s.clip_in[j];
+      const Real dp = s.clip_distance[i], dq = s.clip_distance[j];
       if (dp <= 0) s.clip_out.push_back(p);
       if ((dp < 0 && dq > 0) || (dp > 0 && dq < 0)) s.clip_out.push_back(p + dp / (dp - dq) * (q - p));
     }

@@ -84,6 +84,7 @@ void place_edges(const Block& block, WorldBlock& out);
 struct alignas(64) ManifoldScratch {
   WorldBlock a, b;  // for the overloads that take poses
   std::vector<Vec3> clip_in, clip_out;
+  std::vector<Real> clip_distance;  // each clip_in point's distance out of the side clipped by
   std::vector<Vec3> candidates;  // points within the margin, before reduce_points
   std::vector<Real> candidate_gaps;
   std::vector<int> edge_list;  // B's edges that may face A
