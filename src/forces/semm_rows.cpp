@@ -212,7 +212,7 @@ inline void apply_friction(Memory& m, const Memory::FrictionRow& f, int still, c
 
 // The sweeps' two parts of it: a tangential impulse (d1, d2), and a twist about the normal,
 // which only turns the bodies. Why apart: the whole impulse with its missing part zero pushed
-// and turned both bodies by zeros, a sixth of the sweeps' instructions.
+// and turned both bodies by zeros (apart, a pour's crash takes 9 % fewer instructions).
 inline void apply_slip(Memory& m, const Memory::FrictionRow& f, int still, Real d1, Real d2) {
   const Vec3 j = d1 * f.tangent1 + d2 * f.tangent2;
   push(m, f.b, still, j, d1 * f.turn_b_t1 + d2 * f.turn_b_t2);
