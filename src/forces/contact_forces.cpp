@@ -118,7 +118,8 @@ void compute_contact_forces(const Model& model, const State& state,
 
   const bool paper = scene.contact.model == ContactModel::semm_paper;
   const bool one_point = scene.contact.points == PatchPoints::one;
-  all_patch_points(patches, one_point, f.point_runs, f.points);
+  for (size_t i = 0; i < patches.size(); ++i)
+    patch_points(patches[i], static_cast<int>(i), one_point, f.points);
   body_responses(model, state, dt, f.responses, loads);
 
   if (paper) {

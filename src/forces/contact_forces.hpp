@@ -24,7 +24,6 @@ struct PatchForce {
 // Scratch and results of the force stage, reused between steps.
 struct ContactForces {
   std::vector<ContactPoint> points;
-  std::vector<std::vector<ContactPoint>> point_runs;  // points made by runs of patches
   std::vector<BodyResponse> responses;
   std::vector<Vec3> centres;
   std::vector<Real> approach;  // normal relative velocity at each point at the step's start

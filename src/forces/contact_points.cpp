@@ -4,8 +4,6 @@
 #include <array>
 #include <cmath>
 
-#include "support/parallel.hpp"
-
 namespace tem {
 
 Vec3 any_orthogonal(const Vec3& n) {
@@ -75,27 +73,6 @@ void patch_points(const ContactPatch& patch, int index, bool one_per_patch,
       repeated = (out[k].point - p.point).norm() <= 1e-9 * size;
     if (!repeated) out.push_back(p);
   }
-}
-
-void all_patch_points(const std::vector<ContactPatch>& patches, bool one_per_patch,
-                      std::vector<std::vector<ContactPoint>>& runs,
-                      std::vector<ContactPoint>& out) {
-  const size_t n = patches.size();
-  if (max_threads() == 1) {  // no copies where no thread shares the work
-    for (size_t i = 0; i < n; ++i)
-      patch_points(patches[i], static_cast<int>(i), one_per_patch, out);
-    return;
-  }
-  constexpr size_t kRun = 256;  // patches per run: enough work to be worth sharing
-  runs.resize((n + kRun - 1) / kRun);
-  parallel_for(static_cast<long long>(runs.size()), 1, [&](long long r) {
-    std::vector<ContactPoint>& run = runs[static_cast<size_t>(r)];
-    run.clear();
-    const size_t first = static_cast<size_t>(r) * kRun, last = std::min(n, first + kRun);
-    for (size_t i = first; i < last; ++i)
-      patch_points(patches[i], static_cast<int>(i), one_per_patch, run);
-  });
-  for (const std::vector<ContactPoint>& run : runs) out.insert(out.end(), run.begin(), run.end());
 }
 
 }  // namespace tem

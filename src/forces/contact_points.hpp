@@ -33,13 +33,6 @@ struct ContactPoint {
 void patch_points(const ContactPatch& patch, int index, bool one_per_patch,
                   std::vector<ContactPoint>& out);
 
-// The points of every patch, in patch order, as patch_points appends them one patch after the
-// other. Runs of patches are shared among the threads, each into its list of `runs`, and then
-// joined in order: the same points at any thread count.
-void all_patch_points(const std::vector<ContactPatch>& patches, bool one_per_patch,
-                      std::vector<std::vector<ContactPoint>>& runs,
-                      std::vector<ContactPoint>& out);
-
 // A unit vector orthogonal to n, chosen continuously and deterministically.
 Vec3 any_orthogonal(const Vec3& n);
 

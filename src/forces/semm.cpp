@@ -535,7 +535,7 @@ void normal_targets(const std::vector<ContactPoint>& points, const std::vector<R
   const Real dt = settings.time_step;
   targets.resize(points.size());
   const bool per_patch = settings.per_patch && patches;
-  parallel_for(static_cast<long long>(points.size()), 256, [&](long long i) {
+  for (size_t i = 0; i < points.size(); ++i) {
     const Real e = per_patch ? (*patches)[points[i].patch].restitution : settings.restitution;
     const Real closing = -start[i];
     const Real gap = -points[i].depth;
@@ -551,12 +551,12 @@ void normal_targets(const std::vector<ContactPoint>& points, const std::vector<R
       }
       if (closing < 0) target = std::min(target, closing);
       targets[i] = target;
-      return;
+      continue;
     }
     targets[i] = closing > settings.restitution_threshold ? e * closing
                  : closing < 0                            ? closing
                                                           : 0;
-  });
+  }
 }
 
 SolverReport solve_semm(const std::vector<ContactPoint>& points, const std::vector<Real>& start,

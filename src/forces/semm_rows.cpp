@@ -484,7 +484,7 @@ inline Vec3 row_slip(const Memory::FrictionRow& f, const std::vector<SlotVelocit
 // positive. Scaling every impulse by s gives E(s) = s B + s^2 A with A = 1/2 j.K j >= 0 and
 // B = E - A; the largest s with E(s) <= 0 is -B/A. Every constraint's sign survives the scaling
 // (normal impulses stay >= 0, friction inside its cone), only the push is a hair weaker.
-Real energy_scale(Memory& m, const std::vector<BodyResponse>& bodies,
+Real energy_scale(const Memory& m, const std::vector<BodyResponse>& bodies,
                   const std::vector<Real>& start, std::vector<SlotVelocity>& free,
                   SolverSync* sync) {
   const size_t n = bodies.size();
@@ -494,37 +494,20 @@ Real energy_scale(Memory& m, const std::vector<BodyResponse>& bodies,
     free[b].angular = bodies[b].angular_velocity;
   }
   free[n] = SlotVelocity{};
-  // Each row's terms on its own, shared among the threads; summed in row order below, so the
-  // sums do not depend on the thread count.
-  const size_t rows = m.rows.size();
-  m.work.resize(rows + m.friction.size());
-  m.curvature.resize(rows + m.friction.size());
-  parallel_for(static_cast<long long>(rows), 256, [&](long long r) {
-    const Memory::NormalRow& row = m.rows[r];
-    if (row.impulse == 0) return;
-    const Real after = row_velocity(row, m.slots);
-    m.work[r] = row.impulse * (start[m.point_of_row[r]] + after) / 2;
-    m.curvature[r] = row.impulse * (after - row_velocity(row, free)) / 2;
-  });
-  parallel_for(static_cast<long long>(m.friction.size()), 256, [&](long long k) {
-    const Memory::FrictionRow& f = m.friction[k];
-    const Vec3 j(f.t1, f.t2, f.twist);
-    if (j == Vec3::Zero()) return;
-    const Vec3 after = row_slip(f, m.slots);
-    m.work[rows + k] = j.dot(f.start_slip + after) / 2;
-    m.curvature[rows + k] = j.dot(after - row_slip(f, free)) / 2;
-  });
   Real added = 0, curvature = 0;
-  for (size_t r = 0; r < rows; ++r) {
-    if (m.rows[r].impulse == 0) continue;
-    added += m.work[r];
-    curvature += m.curvature[r];
+  for (size_t r = 0; r < m.rows.size(); ++r) {
+    const Memory::NormalRow& row = m.rows[r];
+    if (row.impulse == 0) continue;
+    const Real after = row_velocity(row, m.slots);
+    added += row.impulse * (start[m.point_of_row[r]] + after) / 2;
+    curvature += row.impulse * (after - row_velocity(row, free)) / 2;
   }
-  for (size_t k = 0; k < m.friction.size(); ++k) {
-    const Memory::FrictionRow& f = m.friction[k];
-    if (Vec3(f.t1, f.t2, f.twist) == Vec3::Zero()) continue;
-    added += m.work[rows + k];
-    curvature += m.curvature[rows + k];
+  for (const Memory::FrictionRow& f : m.friction) {
+    const Vec3 j(f.t1, f.t2, f.twist);
+    if (j == Vec3::Zero()) continue;
+    const Vec3 after = row_slip(f, m.slots);
+    added += j.dot(f.start_slip + after) / 2;
+    curvature += j.dot(after - row_slip(f, free)) / 2;
   }
   // Rolling rows: the angular impulse does the work h.(w_start + w_after) / 2 likewise.
   for (const Memory::RollingRow& r : m.rolling) {
@@ -591,7 +574,7 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
     m.friction[j].rolling = rolls ? rolling++ : -1;
   }
   m.rolling.resize(static_cast<size_t>(rolling));
-  auto build = [&](long long j) {
+  parallel_for(static_cast<long long>(n_patches), 64, [&](long long j) {
     Memory::FrictionRow& f = m.friction[j];
     const PatchFriction& p = patches[colouring.order[j]];
     build_patch(points, targets, bodies, centres, p, impulses, f.first, m, f);
@@ -600,18 +583,7 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
     if (f.rolling >= 0)
       build_rolling(bodies, p, rolling_limit_of(settings, p), f, m.rolling[f.rolling]);
     m.patch_of_friction[j] = colouring.order[j];
-  };
-  if (settings.colour_sweeps) {
-    // Colour by colour, shared as by_colour shares the sweeps: each thread builds the rows it
-    // will sweep, which are then in its own cache (moving them between the cores cost more
-    // than building them).
-    for (size_t c = 0; c + 1 < colouring.start.size(); ++c) {
-      const int first = colouring.start[c];
-      parallel_for(colouring.start[c + 1] - first, 64, [&](long long i) { build(first + i); });
-    }
-  } else {
-    parallel_for(static_cast<long long>(n_patches), 64, build);
-  }
+  });
 
   bool warm = apply_all(m, still);
   if (sync) {
@@ -657,10 +629,9 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
   if (impulses_checked)
     report.scale = energy_scale(m, bodies, start, m.free, sync);
   // Results back in the caller's order.
-  parallel_for(static_cast<long long>(m.rows.size()), 256, [&](long long r) {
+  for (size_t r = 0; r < m.rows.size(); ++r)
     impulses[m.point_of_row[r]].normal = report.scale * m.rows[r].impulse;
-  });
-  parallel_for(static_cast<long long>(n_patches), 256, [&](long long j) {
+  for (size_t j = 0; j < n_patches; ++j) {
     PatchFriction& p = patches[m.patch_of_friction[j]];
     p.t1 = report.scale * m.friction[j].t1;
     p.t2 = report.scale * m.friction[j].t2;
@@ -668,7 +639,7 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
     const int r = m.friction[j].rolling;
     p.roll1 = r >= 0 ? report.scale * m.rolling[r].r1 : 0;
     p.roll2 = r >= 0 ? report.scale * m.rolling[r].r2 : 0;
-  });
+  }
   return report;
 }
 

@@ -77,9 +77,6 @@ struct RowSolverMemory {
   // Conjugate gradients (semm_rows.cpp: sweeps): the impulses before the sweep, its step,
   // and the search direction, normal rows first, then each friction row's (t1, t2).
   std::vector<Real> before, direction;
-  // The energy check (semm_rows.cpp): each normal row's, then each friction row's, work and
-  // curvature, found in parallel and summed in order.
-  std::vector<Real> work, curvature;
 };
 
 // Default SEMM with scalar normal rows. `start` is each point's normal relative velocity at the

@@ -51,28 +51,20 @@ void warm_start(const std::vector<ContactPoint>& previous,
 
 void warm_start_friction(const std::vector<PatchFriction>& previous,
                          const std::vector<Real>& radius, std::vector<PatchFriction>& patches) {
-  // Where each patch's pair begins in the old list, in one pass as for the points (patches come
-  // in pair order); the matching is then each patch's own, shared among the threads.
-  std::vector<size_t> old_first(patches.size());
-  size_t next = 0;
-  for (size_t i = 0; i < patches.size(); ++i) {
-    while (next < previous.size() && pair_key(previous[next]) < pair_key(patches[i])) ++next;
-    old_first[i] = next;
-  }
-  parallel_for(static_cast<long long>(patches.size()), 256, [&](long long i) {
-    PatchFriction& p = patches[static_cast<size_t>(i)];
+  size_t old_first = 0;
+  for (PatchFriction& p : patches) {
     p.t1 = p.t2 = p.twist = p.roll1 = p.roll2 = 0;
+    while (old_first < previous.size() && pair_key(previous[old_first]) < pair_key(p)) ++old_first;
     Real best_distance = radius[p.body_a];
     const PatchFriction* best = nullptr;
-    for (size_t k = old_first[static_cast<size_t>(i)];
-         k < previous.size() && pair_key(previous[k]) == pair_key(p); ++k) {
+    for (size_t k = old_first; k < previous.size() && pair_key(previous[k]) == pair_key(p); ++k) {
       const Real d = (previous[k].centre - p.centre).norm();
       if (d < best_distance) {
         best_distance = d;
         best = &previous[k];
       }
     }
-    if (!best) return;
+    if (!best) continue;
     const Vec3 t = best->t1 * best->tangent1 + best->t2 * best->tangent2;
     p.t1 = t.dot(p.tangent1);
     p.t2 = t.dot(p.tangent2);
@@ -82,7 +74,7 @@ void warm_start_friction(const std::vector<PatchFriction>& previous,
       p.roll1 = h.dot(p.tangent1);
       p.roll2 = h.dot(p.tangent2);
     }
-  });
+  }
 }
 
 }  // namespace tem
