@@ -152,11 +152,13 @@ TEST(MeshApprox, HoledCubeKeepsItsHole) {
 
 // Bounds on the torus's over-coverage and Hausdorff distance. Measured when the distance-led
 // cutting and the merge pass came in (issue 21): 3.49 %, and 1.45 % of the diagonal (5.32 % and
-// 2.6 % before). For scale, 16 equal sectors would exceed the mesh by 1.45 %. The cutter is
-// deterministic, so the volume bound is the measured figure rounded up to a whole per cent: a
-// change that cuts worse fails here. The distance bound is issue 21's target, 2 %: the figure
-// is found to 0.25 % of the diagonal (1.45 + 0.25 < 2), so it cannot fail by imprecision alone.
-constexpr Real kTorusOverCoverage = 0.04;
+// 2.6 % before); 3.17 % and 1.26 % with tilted planes and pieces; 2.72 % and 1.26 % since
+// neighbours of different cells merge and the last cuts are chosen without the look ahead. For
+// scale, 16 equal sectors would exceed the mesh by 1.45 %. The cutter is deterministic, so the
+// volume bound is the measured figure rounded up to a whole per cent: a change that cuts worse
+// fails here. The distance bound is issue 21's target, 2 %: the figure is found to 0.25 % of the
+// diagonal (1.45 + 0.25 < 2), so it cannot fail by imprecision alone.
+constexpr Real kTorusOverCoverage = 0.03;
 constexpr Real kTorusHausdorff = 0.02;
 
 TEST(MeshApprox, TorusBlocksAreDisjointAndKeepTheHole) {

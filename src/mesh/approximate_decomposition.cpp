@@ -28,9 +28,15 @@
 //     room; a mesh of several shells starts so. A node then has more than two children;
 //   - cutting stops at max_blocks, or when every part's concavity is below kConcavityFraction
 //     of the mesh's volume and its distance below kDistanceGoal;
-//   - then an improvement pass: the sibling leaves whose parent's hull adds least are merged
-//     back and the blocks spent on the leaf whose best cut gains more, while the sum of the
-//     hulls' volumes drops (so it ends) and no block strays over kDistanceGoal that did not.
+//   - then an improvement pass: the two or more leaves whose joint block adds least over their
+//     own are merged (the siblings of a node back into it, or two neighbouring leaves of
+//     different nodes whose joint hull reaches into no other block: CoACD and V-HACD merge
+//     neighbours the same way) and the blocks freed spent on the leaf whose cut gains more,
+//     while the sum of the hulls' volumes drops (so it ends) and no block strays over
+//     kDistanceGoal that did not;
+//   - then the last cuts again: a node whose two children stay leaves is cut anew by the plane
+//     whose two hulls are least, without the look ahead (nothing is cut after it), and the
+//     improvement pass runs once more with every cut so chosen.
 // Each candidate is scored on its own and the best taken in a fixed order, so the blocks are
 // the same, to the bit, with any number of threads.
 #include <algorithm>
@@ -46,6 +52,7 @@
 
 #include "mass/surface_integrals.hpp"
 #include "mesh/approximate_lookahead.hpp"
+#include "mesh/convex_overlap.hpp"
 #include "mesh/hull_polyhedron.hpp"
 #include "mesh/mesh_decomposition.hpp"
 #include "mesh/mesh_distance.hpp"
@@ -90,7 +97,7 @@ struct Leaf {
   PolyhedronDef block;
   Real hull_volume = 0;
   Real distance = 0;   // how far its block strays outside the mesh (largest_outside_distance)
-  bool final = false;  // no candidate plane gave two valid blocks
+  bool final = false;  // not to be cut: no candidate plane gave two valid blocks, or merged
   Real concavity() const { return hull_volume - part.volume; }
 };
 
@@ -125,6 +132,9 @@ struct Context {
   Real precision;     // of distances, and the tie between two of them
   Real tie;           // between two volumes
   bool for_distance;  // this split aims at the distance of the part's block outside the mesh
+  // What the look ahead's saving counts for in a candidate's score: kLookaheadWeight while the
+  // tree grows, 0 for a last cut whose sides stay blocks.
+  Real lookahead = kLookaheadWeight;
 };
 
 // About how far the hull of these points strays outside the mesh (sampled, to rank candidate
@@ -180,9 +190,10 @@ void score(const MeshPart& part, Candidate& candidate, const Context& context) {
   for (const MeshPart& side : sides)
     if (!(side.volume >= kSmallestSide * part.volume)) return;
   for (int s = 0; s < 2; ++s) candidate.hull_volume[s] = hull_volume(sides[s].points);
-  candidate.score = candidate.hull_volume[0] + candidate.hull_volume[1] -
-                    kLookaheadWeight * (lookahead_gain(sides[0].points) +
-                                        lookahead_gain(sides[1].points));
+  candidate.score = candidate.hull_volume[0] + candidate.hull_volume[1];
+  if (context.lookahead > 0)
+    candidate.score -= context.lookahead * (lookahead_gain(sides[0].points) +
+                                            lookahead_gain(sides[1].points));
   candidate.worst = std::max(candidate.hull_volume[0] - sides[0].volume,
                              candidate.hull_volume[1] - sides[1].volume);
   if (context.for_distance)
@@ -302,6 +313,42 @@ std::optional<Split> split(const Leaf& leaf, Context context) {
     return split_into(leaf.hull_volume, std::move(*children));
   }
   return std::nullopt;
+}
+
+// What the hull of two leaves' blocks together adds over their own hulls.
+Real merge_cost(const Leaf& a, const Leaf& b) {
+  std::vector<Vec3> both = a.block.points;
+  both.insert(both.end(), b.block.points.begin(), b.block.points.end());
+  return hull_volume(both) - a.hull_volume - b.hull_volume;
+}
+
+// The leaf of a and b merged, if its hull makes a valid block that reaches into none of
+// `others` (blocks never overlap) and strays no farther outside the mesh than the goal or the
+// worse of the two did. Its part keeps only the corners, which is all a hull needs: a merged
+// leaf is not cut again (`final`).
+std::optional<Leaf> merged_leaf(const Leaf& a, const Leaf& b,
+                                const std::vector<const Leaf*>& others, Real distance_goal,
+                                Real eps, const Context& context) {
+  MeshPart part;
+  part.points = a.part.points;
+  part.points.insert(part.points.end(), b.part.points.begin(), b.part.points.end());
+  part.volume = a.part.volume + b.part.volume;
+  auto block = hull_block(part.points, kWeld * radius_about_mean(part.points));
+  if (!block) return std::nullopt;
+  const auto box = bounding_box(block->points);
+  for (const Leaf* other : others)
+    if (boxes_meet(box, bounding_box(other->block.points), eps) &&
+        !convex_insides_apart(*block, other->block, eps))
+      return std::nullopt;
+  const Real distance = largest_outside_distance(*context.distance, {*block}, context.precision);
+  if (distance > std::max({distance_goal, a.distance, b.distance})) return std::nullopt;
+  Leaf leaf;
+  leaf.hull_volume = hull_volume(part.points);
+  leaf.part = std::move(part);
+  leaf.block = std::move(*block);
+  leaf.distance = distance;
+  leaf.final = true;
+  return leaf;
 }
 
 std::string percent(Real fraction) {
@@ -426,70 +473,198 @@ MeshDecomposition approximate_decomposition(const TriangleMesh& mesh, int max_bl
   };
   grow();
 
-  // Improvement: merge the leaves of the node whose hull adds least over theirs and spend the
-  // blocks freed on the leaf whose cut gains more, while that lowers the sum of the hulls'
-  // volumes (so it ends); blocks still left go to further cuts.
-  for (int round = 0; round < max_blocks; ++round) {
-    int merge = -1;
+  // Improvement: merge the leaves whose joint block adds least over theirs and spend the blocks
+  // freed on the leaf whose cut gains more, while that lowers the sum of the hulls' volumes (so
+  // it ends); blocks still left go to further cuts. Two kinds of merge: a node's children back
+  // into it, and two neighbouring leaves of different nodes into a block of their joint hull
+  // (a node of its own, outside the tree), where that hull reaches into no other block.
+  struct LeafPair {
+    int a, b;
     Real cost = 0;
-    for (size_t i = 0; i < nodes.size(); ++i) {
-      const Node& node = nodes[i];
-      if (!node.alive || node.children.empty() || node.leaf.distance > distance_goal ||
-          !std::all_of(node.children.begin(), node.children.end(),
-                       [&](int c) { return nodes[c].is_leaf(); }))
-        continue;
-      Real c = node.leaf.hull_volume;
-      for (int child : node.children) c -= nodes[child].leaf.hull_volume;
-      if (merge < 0 || c < cost) {
-        merge = static_cast<int>(i);
-        cost = c;
-      }
+    bool refused = false;  // merged_leaf said no; not asked again
+  };
+  std::vector<LeafPair> leaf_pairs;
+  size_t paired = 0;  // the pairs of nodes below this index are listed
+  const Real touching = 1e-9 * diagonal;
+  // The cheapest pair merge that costs less than `below` (index into leaf_pairs, or -1), and
+  // its leaf. Pairs are listed as leaves appear; siblings are left to the merge into their node.
+  auto cheapest_pair_merge = [&](Real below, std::optional<Leaf>& merged) {
+    const size_t first = leaf_pairs.size();
+    for (size_t b = paired; b < nodes.size(); ++b) {
+      if (!nodes[b].is_leaf()) continue;
+      const auto box_b = bounding_box(nodes[b].leaf.block.points);
+      for (size_t a = 0; a < b; ++a)
+        if (nodes[a].is_leaf() && (nodes[a].parent < 0 || nodes[a].parent != nodes[b].parent) &&
+            boxes_meet(bounding_box(nodes[a].leaf.block.points), box_b, touching))
+          leaf_pairs.push_back({static_cast<int>(a), static_cast<int>(b)});
     }
-    if (merge < 0) break;
-    const int room = max_blocks - leaf_count + static_cast<int>(nodes[merge].children.size());
-    // A cut gains at most the leaf's concavity (each child's hull holds the child), so leaves
-    // are looked at by falling concavity until none can beat the best gain found: cuts are
-    // found for few of them, and the choice is the same as if for all.
+    paired = nodes.size();
+    parallel_for(
+        static_cast<long long>(leaf_pairs.size() - first), 1,
+        [&](long long i) {
+          LeafPair& p = leaf_pairs[first + i];
+          p.cost = merge_cost(nodes[p.a].leaf, nodes[p.b].leaf);
+        },
+        true);
     std::vector<int> order;
-    for (size_t i = 0; i < nodes.size(); ++i)
-      if (nodes[i].is_leaf() && nodes[i].parent != merge && !nodes[i].leaf.final &&
-          nodes[i].leaf.concavity() > enough)
+    for (size_t i = 0; i < leaf_pairs.size(); ++i) {
+      const LeafPair& p = leaf_pairs[i];
+      if (!p.refused && p.cost < below && nodes[p.a].is_leaf() && nodes[p.b].is_leaf())
         order.push_back(static_cast<int>(i));
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-      return nodes[a].leaf.concavity() > nodes[b].leaf.concavity();
-    });
-    int best = -1;
+    }
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int x, int y) { return leaf_pairs[x].cost < leaf_pairs[y].cost; });
     for (int i : order) {
-      if (!(nodes[i].leaf.concavity() > cost + context.tie) ||
-          (best >= 0 && !(nodes[i].leaf.concavity() > nodes[best].next->gain)))
+      LeafPair& p = leaf_pairs[i];
+      std::vector<const Leaf*> others;
+      for (size_t k = 0; k < nodes.size(); ++k)
+        if (nodes[k].is_leaf() && static_cast<int>(k) != p.a && static_cast<int>(k) != p.b)
+          others.push_back(&nodes[k].leaf);
+      merged = merged_leaf(nodes[p.a].leaf, nodes[p.b].leaf, others, distance_goal, touching,
+                           context);
+      if (merged) return i;
+      p.refused = true;
+    }
+    return -1;
+  };
+  auto improve = [&] {
+    for (int round = 0; round < 4 * max_blocks; ++round) {
+      // The node whose children merge back at least cost...
+      int merge = -1;
+      Real cost = std::numeric_limits<Real>::infinity();
+      for (size_t i = 0; i < nodes.size(); ++i) {
+        const Node& node = nodes[i];
+        if (!node.alive || node.children.empty() || node.leaf.distance > distance_goal ||
+            !std::all_of(node.children.begin(), node.children.end(),
+                         [&](int c) { return nodes[c].is_leaf(); }))
+          continue;
+        Real c = node.leaf.hull_volume;
+        for (int child : node.children) c -= nodes[child].leaf.hull_volume;
+        if (merge < 0 || c < cost) {
+          merge = static_cast<int>(i);
+          cost = c;
+        }
+      }
+      // ... or two neighbours for less.
+      std::optional<Leaf> pair_leaf;
+      const int pair = cheapest_pair_merge(cost, pair_leaf);
+      int pair_a = -1, pair_b = -1;
+      if (pair >= 0) {
+        pair_a = leaf_pairs[pair].a;
+        pair_b = leaf_pairs[pair].b;
+        cost = leaf_pairs[pair].cost;
+        merge = -1;
+      } else if (merge < 0) {
         break;
-      const auto& cut = known_split(i, room);
-      if (!cut) continue;
-      bool strays = false;
-      for (const Leaf& child : cut->children) strays |= child.distance > distance_goal;
-      if (strays && nodes[i].leaf.distance <= distance_goal) continue;
-      if (best < 0 || cut->gain > nodes[best].next->gain) best = i;
+      }
+      const int room = max_blocks - leaf_count +
+                       (pair >= 0 ? 2 : static_cast<int>(nodes[merge].children.size()));
+      // A cut gains at most the leaf's concavity (each child's hull holds the child), so leaves
+      // are looked at by falling concavity until none can beat the best gain found: cuts are
+      // found for few of them, and the choice is the same as if for all.
+      std::vector<int> order;
+      for (size_t i = 0; i < nodes.size(); ++i) {
+        const int n = static_cast<int>(i);
+        if (nodes[i].is_leaf() && (merge < 0 || nodes[i].parent != merge) && n != pair_a &&
+            n != pair_b && !nodes[i].leaf.final && nodes[i].leaf.concavity() > enough)
+          order.push_back(n);
+      }
+      std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+        return nodes[a].leaf.concavity() > nodes[b].leaf.concavity();
+      });
+      int best = -1;
+      for (int i : order) {
+        if (!(nodes[i].leaf.concavity() > cost + context.tie) ||
+            (best >= 0 && !(nodes[i].leaf.concavity() > nodes[best].next->gain)))
+          break;
+        const auto& cut = known_split(i, room);
+        if (!cut) continue;
+        bool strays = false;
+        for (const Leaf& child : cut->children) strays |= child.distance > distance_goal;
+        if (strays && nodes[i].leaf.distance <= distance_goal) continue;
+        if (best < 0 || cut->gain > nodes[best].next->gain) best = i;
+      }
+      if (best < 0 || !(nodes[best].next->gain > cost + context.tie)) break;
+      if (pair >= 0) {
+        nodes[pair_a].alive = nodes[pair_b].alive = false;
+        Node merged;
+        merged.leaf = std::move(*pair_leaf);
+        nodes.push_back(std::move(merged));
+        --leaf_count;
+      } else {
+        Node& parent = nodes[merge];
+        Split back;
+        for (int child : parent.children) {
+          back.children.push_back(std::move(nodes[child].leaf));
+          nodes[child].alive = false;
+        }
+        back.gain = cost;
+        leaf_count -= static_cast<int>(parent.children.size()) - 1;
+        parent.children.clear();
+        parent.next = std::move(back);
+        parent.next_known = true;
+      }
+      Split cut = std::move(*nodes[best].next);
+      apply(best, std::move(cut));
+      grow();
     }
-    if (best < 0 || !(nodes[best].next->gain > cost + context.tie)) break;
-    Node& parent = nodes[merge];
-    Split back;
-    for (int child : parent.children) {
-      back.children.push_back(std::move(nodes[child].leaf));
-      nodes[child].alive = false;
+  };
+  improve();
+
+  // The last cuts again, without the look ahead: a node whose two children stay leaves gains
+  // nothing from a cut that prepares further cuts, so it is cut anew by the plane whose two
+  // hulls are least (where that lowers them and strays no farther outside the mesh). From here
+  // on every cut is chosen so.
+  context.lookahead = 0;
+  bool recut = false;
+  for (size_t i = 0, count = nodes.size(); i < count; ++i) {
+    const Node& node = nodes[i];
+    if (!node.alive || node.children.size() != 2 ||
+        !std::all_of(node.children.begin(), node.children.end(),
+                     [&](int c) { return nodes[c].is_leaf(); }))
+      continue;
+    Real hulls = 0, strays = distance_goal;
+    for (int c : node.children) {
+      hulls += nodes[c].leaf.hull_volume;
+      strays = std::max(strays, nodes[c].leaf.distance);
     }
-    back.gain = cost;
-    leaf_count -= static_cast<int>(parent.children.size()) - 1;
-    parent.children.clear();
-    parent.next = std::move(back);
-    parent.next_known = true;
-    Split cut = std::move(*nodes[best].next);
-    apply(best, std::move(cut));
-    grow();
+    context.for_distance = false;
+    context.room = 2;
+    auto again = split(node.leaf, context);
+    if (!again || again->children.size() != 2) continue;
+    Real new_hulls = 0, new_strays = 0;
+    for (const Leaf& child : again->children) {
+      new_hulls += child.hull_volume;
+      new_strays = std::max(new_strays, child.distance);
+    }
+    if (!(new_hulls < hulls - context.tie) || new_strays > strays) continue;
+    for (int k = 0; k < 2; ++k) {
+      Node& child = nodes[node.children[k]];
+      child.leaf = std::move(again->children[k]);
+      child.next.reset();
+      child.next_known = false;
+    }
+    recut = true;
   }
+  // The improvement pass again with those cuts: a leaf cut now is seldom cut again, so what a
+  // cut gains at once is what it should be weighed by against a merge. (Run first, it did worse
+  // on the rocker arm, whose holes' rims still needed cuts that prepare the next: 6.19 % against
+  // 5.61 % at 64 blocks.)
+  if (recut) {  // the pairs' costs and verdicts were the old children's
+    leaf_pairs.clear();
+    paired = 0;
+  }
+  for (Node& node : nodes)
+    if (node.is_leaf()) {
+      node.next.reset();
+      node.next_known = false;
+    }
+  improve();
 
   std::vector<Leaf> leaves;
   for (Node& node : nodes)
     if (node.is_leaf()) leaves.push_back(std::move(node.leaf));
+
   Real left = 0;
   for (const Leaf& leaf : leaves) {
     if (!leaf.final) left = std::max(left, leaf.concavity());
