@@ -97,7 +97,8 @@ struct Leaf {
   PolyhedronDef block;
   Real hull_volume = 0;
   Real distance = 0;   // how far its block strays outside the mesh (largest_outside_distance)
-  bool final = false;  // not to be cut: no candidate plane gave two valid blocks, or merged
+  bool final = false;   // not to be cut: no candidate plane gave two valid blocks, or merged
+  bool merged = false;  // two neighbours' hull (merged_leaf): not cut, though a cut may exist
   Real concavity() const { return hull_volume - part.volume; }
 };
 
@@ -347,7 +348,7 @@ std::optional<Leaf> merged_leaf(const Leaf& a, const Leaf& b,
   leaf.part = std::move(part);
   leaf.block = std::move(*block);
   leaf.distance = distance;
-  leaf.final = true;
+  leaf.final = leaf.merged = true;
   return leaf;
 }
 
@@ -667,7 +668,7 @@ MeshDecomposition approximate_decomposition(const TriangleMesh& mesh, int max_bl
 
   Real left = 0;
   for (const Leaf& leaf : leaves) {
-    if (!leaf.final) left = std::max(left, leaf.concavity());
+    if (!leaf.final || leaf.merged) left = std::max(left, leaf.concavity());
     else if (leaf.concavity() > enough)
       result.warnings.push_back("a part whose hull exceeds it by " +
                                 percent(leaf.concavity() / result.mesh_volume) +
