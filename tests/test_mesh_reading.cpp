@@ -143,6 +143,33 @@ TEST(MeshRead, EveryFormatGivesBackTheMesh) {
     }
 }
 
+// A UTF-8 byte order mark before the text (as Windows editors write it, and as CGAL's
+// elephant.off has it) is passed over: the same vertices, to the bit, as without. In a binary
+// STL the same three bytes are part of the 80-byte header, so the file stays binary.
+TEST(MeshRead, ByteOrderMarkIsPassedOver) {
+  const fs::path dir = scratch_dir();
+  const TriangleMesh original = torus_mesh(1, 0.3, 12, 8);
+  const std::string mark = "\xEF\xBB\xBF";
+  int file = 0;
+  for (const Format& format : kFormats) {
+    const std::string path = (dir / ("mesh" + std::to_string(file++) + "." + format.extension)).string();
+    format.write(original, path);
+    SCOPED_TRACE(path);
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const TriangleMesh plain = read_mesh_memory(bytes.data(), bytes.size(), format.extension, "plain");
+    if (format.floats)
+      bytes.replace(0, mark.size(), mark);
+    else
+      bytes.insert(0, mark);
+    const TriangleMesh marked = read_mesh_memory(bytes.data(), bytes.size(), format.extension, "marked");
+    ASSERT_EQ(marked.vertices.size(), plain.vertices.size());
+    EXPECT_EQ(marked.faces, plain.faces);
+    for (std::size_t v = 0; v < plain.vertices.size(); ++v)
+      EXPECT_EQ(marked.vertices[v], plain.vertices[v]);
+  }
+}
+
 // L and holed cube have integer coordinates, which floats hold exactly.
 TEST(MeshRead, IntegerMeshesKeepTheirExactVolume) {
   const fs::path dir = scratch_dir();

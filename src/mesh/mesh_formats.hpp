@@ -51,6 +51,11 @@ class Lines {
 
 bool is_space(char c);
 
+// The text after a UTF-8 byte order mark, if it begins with one: editors on Windows write one
+// before the first keyword of OBJ, OFF, ASCII PLY and ASCII STL files (CGAL's elephant.off has
+// one). Not for binary STL, whose 80-byte header may begin with any bytes.
+std::string_view without_byte_order_mark(std::string_view text);
+
 // The whitespace-separated words of a line, from its start to `comment` (exclusive) if given.
 std::vector<std::string_view> words(std::string_view line, char comment = '\0');
 

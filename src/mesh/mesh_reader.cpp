@@ -142,8 +142,9 @@ TriangleMesh parse(const void* data, std::size_t size, const std::string& extens
   require_supported(extension, source);
   require_scale(scale, source);
   if (!data || size == 0) throw MeshError(source + ": the file is empty");
-  const std::string_view text(static_cast<const char*>(data), size);
   using namespace mesh_formats;
+  const std::string_view bytes(static_cast<const char*>(data), size);
+  const std::string_view text = extension == "stl" ? bytes : without_byte_order_mark(bytes);
   const PolygonSoup soup = extension == "obj"   ? read_obj(text, source)
                            : extension == "off" ? read_off(text, source)
                            : extension == "ply" ? read_ply(text, source)

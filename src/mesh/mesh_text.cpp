@@ -23,6 +23,11 @@ bool is_space(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
 }
 
+std::string_view without_byte_order_mark(std::string_view text) {
+  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
+  return text;
+}
+
 std::vector<std::string_view> words(std::string_view line, char comment) {
   if (comment != '\0') line = line.substr(0, line.find(comment));
   std::vector<std::string_view> result;

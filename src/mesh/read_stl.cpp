@@ -93,6 +93,7 @@ PolygonSoup read_stl(std::string_view text, const std::string& source) {
   const std::uint32_t facets = text.size() >= 84 ? little_uint32(text, 80) : 0;
   const unsigned long long binary_size = 84 + 50ull * facets;
   if (text.size() >= 84 && binary_size == text.size()) return read_binary(text, facets);
+  text = without_byte_order_mark(text);
   std::size_t first = 0;
   while (first < text.size() && is_space(text[first])) ++first;
   const bool solid = text.substr(first).starts_with("solid");
