@@ -56,6 +56,12 @@ void MeshApproximatePotato(benchmark::State& state) {
 }
 BENCHMARK(MeshApproximatePotato)->Arg(32)->Arg(64)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 
+void MeshApproximateKnot(benchmark::State& state) {
+  static const TriangleMesh mesh = testing_support::knot_mesh();
+  run(state, mesh);
+}
+BENCHMARK(MeshApproximateKnot)->Arg(32)->Arg(64)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+
 // One benchmark per closed mesh file in $TEM_PUBLIC_MESHES, registered before main runs.
 bool register_public_meshes() {
   const char* dir = std::getenv("TEM_PUBLIC_MESHES");

@@ -291,8 +291,9 @@ TEST(MeshApprox, SameBlocksEveryRunAndThreadCount) {
 // The benchmark's stand-ins for scanned meshes are meshes a user could load: closed, outward,
 // free of self-intersections (checked here at a low resolution of the same shapes).
 TEST(MeshApprox, ScanLikeMeshesPassTheChecks) {
-  for (TriangleMesh mesh :
-       {testing_support::bumpy_torus_mesh(60, 16), testing_support::potato_mesh(40, 20)}) {
+  for (TriangleMesh mesh : {testing_support::bumpy_torus_mesh(60, 16),
+                            testing_support::potato_mesh(40, 20),
+                            testing_support::knot_mesh(120, 16)}) {
     const MeshCheck check = check_mesh(mesh);
     EXPECT_TRUE(check.closed) << mesh.source;
     EXPECT_FALSE(check.turned) << mesh.source;
@@ -300,6 +301,7 @@ TEST(MeshApprox, ScanLikeMeshesPassTheChecks) {
   }
   EXPECT_EQ(testing_support::bumpy_torus_mesh().faces.size(), 75000u);
   EXPECT_EQ(testing_support::potato_mesh().faces.size(), 75000u);
+  EXPECT_EQ(testing_support::knot_mesh().faces.size(), 75000u);
 }
 
 // Three planes through a cube's centre: the corner at the centre is inside the solid and on no

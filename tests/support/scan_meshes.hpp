@@ -2,8 +2,9 @@
 // scanned file is at hand, so these stand in for one. Each is a smooth, non-convex shape with
 // low-frequency bumps and a per-vertex "scanner noise" along its surface's radial direction,
 // deterministic (no random generator, a hash of the grid position). At the default resolution
-// each has 75,000 faces. Both are radial graphs (over a circle of the torus's centre line, or
-// over the sphere), so no face crosses another whatever the displacement.
+// each has 75,000 faces. The torus and the potato are radial graphs (over a circle of the
+// torus's centre line, or over the sphere), so no face crosses another whatever the
+// displacement; the knot's tube is thinner than its strands are apart (below).
 #pragma once
 
 #include <array>
@@ -100,6 +101,46 @@ inline TriangleMesh potato_mesh(int n = 300, int m = 126) {
     }
     mesh.faces.push_back({south, at(i + 1, m - 1), at(i, m - 1)});
   }
+  return mesh;
+}
+
+// A trefoil knot: a tube about the curve (sin u + 2 sin 2u, cos u - 2 cos 2u, -sin 3u), whose
+// radius, 0.42 on average, wanders by up to a fifth with waves around and along the tube, plus
+// noise of +-0.002. The strands' centre lines come no nearer than 1.21 to each other and bend no
+// tighter than a radius of 1.29, so the tube (radius at most 0.51) meets itself nowhere. Its
+// cross-sections sit in the curve's Frenet frame, which closes on itself as the curve never
+// straightens; they turn from normal towards minus binormal so that faces point out. n x m grid,
+// 2 n m faces.
+inline TriangleMesh knot_mesh(int n = 500, int m = 75) {
+  TriangleMesh mesh;
+  mesh.source = "trefoil knot";
+  const Real pi = std::numbers::pi;
+  for (int i = 0; i < n; ++i) {
+    const Real u = 2 * pi * i / n;
+    const Vec3 centre(std::sin(u) + 2 * std::sin(2 * u), std::cos(u) - 2 * std::cos(2 * u),
+                      -std::sin(3 * u));
+    const Vec3 velocity(std::cos(u) + 4 * std::cos(2 * u), -std::sin(u) + 4 * std::sin(2 * u),
+                        -3 * std::cos(3 * u));
+    const Vec3 acceleration(-std::sin(u) - 8 * std::sin(2 * u),
+                            -std::cos(u) + 8 * std::cos(2 * u), 9 * std::sin(3 * u));
+    const Vec3 tangent = velocity.normalized();
+    const Vec3 binormal = velocity.cross(acceleration).normalized();
+    const Vec3 normal = binormal.cross(tangent);
+    for (int j = 0; j < m; ++j) {
+      const Real v = 2 * pi * j / m;
+      const Real r = 0.42 * (1 + 0.12 * std::sin(4 * u + 0.3) * std::cos(2 * v) +
+                             0.08 * std::sin(7 * u) * std::sin(3 * v + 1)) +
+                     0.002 * grid_noise(i, j);
+      mesh.vertices.push_back(centre + r * (std::cos(v) * normal - std::sin(v) * binormal));
+    }
+  }
+  auto at = [&](int i, int j) { return ((i + n) % n) * m + (j + m) % m; };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) {
+      const int a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+      mesh.faces.push_back({a, b, c});
+      mesh.faces.push_back({a, c, d});
+    }
   return mesh;
 }
 
