@@ -3,6 +3,7 @@
 // settle (two blocks crossed edge to edge) is answered "overlap", the safe side for a merge.
 #include <gtest/gtest.h>
 
+#include "geometry/aabb.hpp"
 #include "mesh/convex_overlap.hpp"
 
 namespace tem {
@@ -67,12 +68,20 @@ TEST(ConvexOverlap, BarsCrossedEdgeToEdgeAreCalledOverlapping) {
 }
 
 TEST(ConvexOverlap, BoundingBoxes) {
-  const auto b = bounding_box({Vec3(1, -2, 3), Vec3(-1, 5, 0), Vec3(0, 0, 4)});
-  EXPECT_EQ(b[0], Vec3(-1, -2, 0));
-  EXPECT_EQ(b[1], Vec3(1, 5, 4));
-  EXPECT_TRUE(boxes_meet(b, {Vec3(1, 5, 4), Vec3(2, 6, 5)}, 0));       // a corner
-  EXPECT_FALSE(boxes_meet(b, {Vec3(1.1, 5, 4), Vec3(2, 6, 5)}, 0.05));  // 0.1 apart
-  EXPECT_TRUE(boxes_meet(b, {Vec3(1.1, 5, 4), Vec3(2, 6, 5)}, 0.2));
+  const Aabb b = Aabb::around({Vec3(1, -2, 3), Vec3(-1, 5, 0), Vec3(0, 0, 4)});
+  EXPECT_EQ(b.min, Vec3(-1, -2, 0));
+  EXPECT_EQ(b.max, Vec3(1, 5, 4));
+  EXPECT_TRUE(b.within({Vec3(1, 5, 4), Vec3(2, 6, 5)}, 0));       // a corner
+  EXPECT_TRUE(b.overlaps({Vec3(1, 5, 4), Vec3(2, 6, 5)}));
+  EXPECT_FALSE(b.within({Vec3(1.1, 5, 4), Vec3(2, 6, 5)}, 0.05));  // 0.1 apart
+  EXPECT_FALSE(b.overlaps({Vec3(1.1, 5, 4), Vec3(2, 6, 5)}));
+  EXPECT_TRUE(b.within({Vec3(1.1, 5, 4), Vec3(2, 6, 5)}, 0.2));
+  Aabb grown = Aabb::empty();
+  EXPECT_FALSE(grown.overlaps(b));  // the empty box meets nothing
+  grown.add(b);
+  grown.add(Vec3(3, 0, 0));
+  EXPECT_EQ(grown.min, Vec3(-1, -2, 0));
+  EXPECT_EQ(grown.max, Vec3(3, 5, 4));
 }
 
 }  // namespace test_convex_overlap

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "collision/block_pose.hpp"
+#include "geometry/aabb.hpp"
 #include "world/model.hpp"
 
 namespace tem {
@@ -25,13 +26,6 @@ namespace tem {
 struct BlockProxy {
   int body;
   int instance;  // index into Model::bodies[body].blocks
-};
-
-struct Aabb {
-  Vec3 min, max;
-  bool overlaps(const Aabb& o) const {
-    return (min.array() <= o.max.array()).all() && (o.min.array() <= max.array()).all();
-  }
 };
 
 struct BlockPair {

@@ -12,24 +12,14 @@
 namespace tem::distributed {
 namespace {
 
-Aabb empty_box() {
-  const Real inf = std::numeric_limits<Real>::infinity();
-  return {Vec3::Constant(inf), Vec3::Constant(-inf)};
-}
-
-void grow(Aabb& box, const Aabb& by) {
-  box.min = box.min.cwiseMin(by.min);
-  box.max = box.max.cwiseMax(by.max);
-}
-
 // A body's world bounds at `s`, every block's grown by `reach` (as the broad phase grows them).
 Aabb body_bounds(const Model& model, int body, const BodyState& s, Real reach) {
-  Aabb box = empty_box();
+  Aabb box = Aabb::empty();
   for (const BlockInstance& instance : model.bodies[body].blocks) {
     Aabb b = block_bounds(model.blocks[instance.block], block_pose(instance, s));
     b.min.array() -= reach;
     b.max.array() += reach;
-    grow(box, b);
+    box.add(b);
   }
   return box;
 }
@@ -234,11 +224,11 @@ void Domain::borders(const Model& model, State& state, Workspace& w) {
   contact_reaches(model, state, reach_, nullptr, &w.subset);
   // Each owned body's reach box, and this rank's: their union.
   std::vector<Aabb> bounds(owned_ids_.size());
-  Aabb mine = empty_box();
+  Aabb mine = Aabb::empty();
   for (size_t i = 0; i < owned_ids_.size(); ++i) {
     const int b = owned_ids_[i];
     bounds[i] = body_bounds(model, b, state.bodies[b], reach_.empty() ? 0 : reach_[b]);
-    grow(mine, bounds[i]);
+    mine.add(bounds[i]);
   }
   std::vector<double> boxes(static_cast<size_t>(6 * size_));
   const double my_box[6] = {mine.min.x(), mine.min.y(), mine.min.z(),

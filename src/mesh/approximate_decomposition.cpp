@@ -50,6 +50,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
+#include "geometry/aabb.hpp"
 #include "mass/surface_integrals.hpp"
 #include "mesh/approximate_lookahead.hpp"
 #include "mesh/convex_overlap.hpp"
@@ -336,9 +337,9 @@ std::optional<Leaf> merged_leaf(const Leaf& a, const Leaf& b,
   part.volume = a.part.volume + b.part.volume;
   auto block = hull_block(part.points, kWeld * radius_about_mean(part.points));
   if (!block) return std::nullopt;
-  const auto box = bounding_box(block->points);
+  const Aabb box = Aabb::around(block->points);
   for (const Leaf* other : others)
-    if (boxes_meet(box, bounding_box(other->block.points), eps) &&
+    if (box.within(Aabb::around(other->block.points), eps) &&
         !convex_insides_apart(*block, other->block, eps))
       return std::nullopt;
   const Real distance = largest_outside_distance(*context.distance, {*block}, context.precision);
@@ -493,10 +494,10 @@ MeshDecomposition approximate_decomposition(const TriangleMesh& mesh, int max_bl
     const size_t first = leaf_pairs.size();
     for (size_t b = paired; b < nodes.size(); ++b) {
       if (!nodes[b].is_leaf()) continue;
-      const auto box_b = bounding_box(nodes[b].leaf.block.points);
+      const Aabb box_b = Aabb::around(nodes[b].leaf.block.points);
       for (size_t a = 0; a < b; ++a)
         if (nodes[a].is_leaf() && (nodes[a].parent < 0 || nodes[a].parent != nodes[b].parent) &&
-            boxes_meet(bounding_box(nodes[a].leaf.block.points), box_b, touching))
+            Aabb::around(nodes[a].leaf.block.points).within(box_b, touching))
           leaf_pairs.push_back({static_cast<int>(a), static_cast<int>(b)});
     }
     paired = nodes.size();

@@ -1,7 +1,5 @@
 #include "mesh/convex_overlap.hpp"
 
-#include <limits>
-
 namespace tem {
 namespace {
 
@@ -35,20 +33,6 @@ bool some_plane_has_all_outside(const PolyhedronDef& p, const std::vector<Vec3>&
 bool convex_insides_apart(const PolyhedronDef& a, const PolyhedronDef& b, Real eps) {
   return some_plane_has_all_outside(a, b.points, eps) ||
          some_plane_has_all_outside(b, a.points, eps);
-}
-
-std::array<Vec3, 2> bounding_box(const std::vector<Vec3>& points) {
-  std::array<Vec3, 2> box{Vec3::Constant(std::numeric_limits<Real>::infinity()),
-                          Vec3::Constant(-std::numeric_limits<Real>::infinity())};
-  for (const Vec3& p : points) {
-    box[0] = box[0].cwiseMin(p);
-    box[1] = box[1].cwiseMax(p);
-  }
-  return box;
-}
-
-bool boxes_meet(const std::array<Vec3, 2>& a, const std::array<Vec3, 2>& b, Real eps) {
-  return (a[0].array() <= b[1].array() + eps).all() && (b[0].array() <= a[1].array() + eps).all();
 }
 
 }  // namespace tem

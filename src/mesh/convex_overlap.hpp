@@ -15,10 +15,4 @@ namespace tem {
 // about their outward normals, as Block and hull_polyhedron give them.
 bool convex_insides_apart(const PolyhedronDef& a, const PolyhedronDef& b, Real eps);
 
-// The corner-wise least and greatest coordinates of the points.
-std::array<Vec3, 2> bounding_box(const std::vector<Vec3>& points);
-
-// Whether two boxes meet, each grown by `eps`.
-bool boxes_meet(const std::array<Vec3, 2>& a, const std::array<Vec3, 2>& b, Real eps);
-
 }  // namespace tem
