@@ -34,6 +34,7 @@ struct ContactForces {
   // The overlap correction's working vectors (overlap_correction.cpp), kept between steps.
   struct Correction {
     std::vector<Real> targets;
+    std::vector<char> held;
     std::vector<BodyResponse> still, moved;
     std::vector<PatchFriction> patches;
     std::vector<PointImpulse> impulses;

@@ -13,6 +13,8 @@ CorrectionReport correct_overlap(const Model& model, ContactForces& f, Real dt,
   if (f.points.empty() && !sync) return report;
   std::vector<Real>& targets = f.correction.targets;
   targets.assign(f.points.size(), 0);
+  std::vector<char>& held = f.correction.held;
+  held.assign(f.points.size(), 0);
   bool any = false;
   for (size_t i = 0; i < f.points.size(); ++i) {
     const ContactPoint& c = f.points[i];
@@ -24,6 +26,8 @@ CorrectionReport correct_overlap(const Model& model, ContactForces& f, Real dt,
     if (excess > 0) {
       targets[i] = excess / dt;  // all of it in this step
       any = true;
+    } else if (c.depth >= 0) {
+      held[i] = 1;  // in contact: the move keeps it so
     }
   }
   if (sync) any = sync->sum(any ? 1 : 0) > 0;
@@ -45,6 +49,7 @@ CorrectionReport correct_overlap(const Model& model, ContactForces& f, Real dt,
   stopping.max_sweeps = model.scene.contact.max_sweeps;
   stopping.colour_sweeps = model.scene.contact.colour_sweeps;
   stopping.sync = sync;
+  stopping.held = &held;
   // The scalar-row solver where the step used it (its memory is free again by now).
   RowSolverMemory* rows = model.scene.contact.solver == ContactSolver::rows ? &f.rows : nullptr;
   f.correction.patches = f.friction;

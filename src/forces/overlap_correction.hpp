@@ -9,6 +9,11 @@
 // the step's contacts dissipated: the total energy never rises. A body resting still (nothing
 // dissipated) keeps its overlap; an impact, which dissipates far more than the lift costs, is
 // corrected in the step it happens.
+//
+// Points already in contact and not deeper than the slop are held (their impulse may take either
+// sign): the move carries what rests on a lifted body along instead of opening a gap that it
+// would fall back into, whose landing would fund the next lift (method.md, "Correction of
+// existing overlap").
 #pragma once
 
 #include "forces/contact_forces.hpp"

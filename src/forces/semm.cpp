@@ -584,6 +584,7 @@ SolverReport solve_separation(const std::vector<ContactPoint>& points,
   settings.colour_sweeps = stopping.colour_sweeps;
   settings.sync = stopping.sync;
   settings.energy_check = false;
+  settings.held = stopping.held;
   impulses.assign(points.size(), PointImpulse{});
   for (PatchFriction& p : patches) p.t1 = p.t2 = p.twist = p.roll1 = p.roll2 = 0;
   if (rows) {

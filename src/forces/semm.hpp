@@ -87,6 +87,10 @@ struct SolverSettings {
   // Whether the result is impulses whose energy is checked (false: the overlap correction's
   // move).
   bool energy_check = true;
+  // Per point, whether its normal impulse may take either sign: the overlap correction holds
+  // the points already in contact, so that its move opens none of them (overlap_correction.hpp).
+  // Read by the scalar-row solver only; null: every normal impulse >= 0.
+  const std::vector<char>* held = nullptr;
   // Nonsmooth nonlinear conjugate gradients over the sweeps (semm_rows.cpp: sweeps).
   bool conjugate_gradients = false;
 };

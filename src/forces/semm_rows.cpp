@@ -1,6 +1,7 @@
 #include "forces/semm_rows.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 
 #include <Eigen/Eigenvalues>
@@ -85,7 +86,7 @@ void patch_block(const std::vector<ContactPoint>& points, const PatchFriction& p
 void build_patch(const std::vector<ContactPoint>& points, const std::vector<Real>& targets,
                  const std::vector<BodyResponse>& bodies, const std::vector<Vec3>& centres,
                  const PatchFriction& p, const std::vector<PointImpulse>& impulses, int first,
-                 Memory& m, Memory::FrictionRow& f) {
+                 const std::vector<char>* held, Memory& m, Memory::FrictionRow& f) {
   const int still = static_cast<int>(bodies.size());
   const int a = slot_of(bodies, p.body_a), b = slot_of(bodies, p.body_b);
   const Real inv_a = m.inverse_mass[a], inv_b = m.inverse_mass[b];
@@ -106,6 +107,7 @@ void build_patch(const std::vector<ContactPoint>& points, const std::vector<Real
     const Real k = inv_a + inv_b + row.arm_a_x_n.dot(row.turn_a) + row.arm_b_x_n.dot(row.turn_b);
     row.inverse_k = k > 0 ? 1 / k : 0;
     row.target = targets[i];
+    row.floor = held && (*held)[i] ? -std::numeric_limits<Real>::infinity() : 0;
     row.impulse = impulses[i].normal;
     row.lever = (c.point - p.centre).norm();
     m.point_of_row[first + (i - p.first)] = i;
@@ -259,13 +261,14 @@ void update_patch(Memory& m, int k, int still, SweepSize& size) {
     }
     const Eigen::Matrix<Real, 4, 1> d = f.k_pseudo_inverse * error;
     bool pushing = true;
-    for (int i = 0; i < count; ++i) pushing = pushing && m.rows[f.first + i].impulse + d(i) >= 0;
+    for (int i = 0; i < count; ++i)
+      pushing = pushing && m.rows[f.first + i].impulse + d(i) >= m.rows[f.first + i].floor;
     if (pushing) {
       for (int i = 0; i < count; ++i) {
         Memory::NormalRow& r = m.rows[f.first + i];
         r.impulse += d(i);
         apply_normal(m, r, still, d(i));
-        size.add(std::abs(d(i)), r.impulse);
+        size.add(std::abs(d(i)), std::abs(r.impulse));
       }
     }
   }
@@ -274,11 +277,11 @@ void update_patch(Memory& m, int k, int still, SweepSize& size) {
     const Real u = r.normal.dot(m.slots[r.b].linear - m.slots[r.a].linear) +
                    r.arm_b_x_n.dot(m.slots[r.b].angular) -
                    r.arm_a_x_n.dot(m.slots[r.a].angular);
-    const Real after = std::max<Real>(0, r.impulse - (u - r.target) * r.inverse_k);
+    const Real after = std::max<Real>(r.floor, r.impulse - (u - r.target) * r.inverse_k);
     const Real d = after - r.impulse;
     r.impulse = after;
     apply_normal(m, r, still, d);
-    size.add(std::abs(d), after);
+    size.add(std::abs(d), std::abs(after));
   }
   if (mu > 0) {
     Real total = 0, reach = 0;
@@ -348,7 +351,7 @@ void accelerate_patch(Memory& m, int k, int still, Real beta, const std::vector<
   Real total = 0;
   for (int i = f.first; i < f.last; ++i) {
     Memory::NormalRow& r = m.rows[i];
-    const Real after = std::max<Real>(0, r.impulse + beta * m.direction[i]);
+    const Real after = std::max<Real>(r.floor, r.impulse + beta * m.direction[i]);
     const Real d = after - r.impulse;
     r.impulse = after;
     total += after;
@@ -577,7 +580,7 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
   parallel_for(static_cast<long long>(n_patches), 64, [&](long long j) {
     Memory::FrictionRow& f = m.friction[j];
     const PatchFriction& p = patches[colouring.order[j]];
-    build_patch(points, targets, bodies, centres, p, impulses, f.first, m, f);
+    build_patch(points, targets, bodies, centres, p, impulses, f.first, settings.held, m, f);
     f.mu = friction_of(settings, p);
     if (!(f.mu > 0)) f.t1 = f.t2 = f.twist = 0;
     if (f.rolling >= 0)

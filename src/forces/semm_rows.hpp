@@ -32,6 +32,7 @@ struct RowSolverMemory {
     int a = 0, b = 0;  // body slots (the still slot for walls and fixed bodies)
     Vec3 normal, arm_a_x_n, arm_b_x_n, turn_a, turn_b;  // turn = Q (arm x n)
     Real inverse_k = 0, target = 0, impulse = 0, lever = 0;  // lever: distance to the centre
+    Real floor = 0;  // the least impulse: 0, or -infinity for a held row (SolverSettings::held)
   };
   struct FrictionRow {
     int a = 0, b = 0;
