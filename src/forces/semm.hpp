@@ -89,7 +89,8 @@ struct SolverSettings {
   bool energy_check = true;
   // Per point, whether its normal impulse may take either sign: the overlap correction holds
   // the points already in contact, so that its move opens none of them (overlap_correction.hpp).
-  // Read by the scalar-row solver only; null: every normal impulse >= 0.
+  // Read by the scalar-row solver only, and not for patches on bodies that several MPI ranks
+  // share (semm_rows.cpp); null: every normal impulse >= 0.
   const std::vector<char>* held = nullptr;
   // Nonsmooth nonlinear conjugate gradients over the sweeps (semm_rows.cpp: sweeps).
   bool conjugate_gradients = false;

@@ -529,6 +529,13 @@ Real energy_scale(const Memory& m, const std::vector<BodyResponse>& bodies,
   return linear < 0 && curvature > 0 ? std::clamp<Real>(-linear / curvature, 0, 1) : 0;
 }
 
+// Whether the solver's copy of a body (index into both lists, or -1: a wall) has a share of
+// its mass only: several ranks' rows push on it (solver_sync.hpp, split).
+bool split_here(const std::vector<BodyResponse>& given, const std::vector<BodyResponse>& bodies,
+                int body) {
+  return body >= 0 && bodies[body].inverse_mass != given[body].inverse_mass;
+}
+
 }  // namespace
 
 SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
@@ -580,7 +587,14 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
   parallel_for(static_cast<long long>(n_patches), 64, [&](long long j) {
     Memory::FrictionRow& f = m.friction[j];
     const PatchFriction& p = patches[colouring.order[j]];
-    build_patch(points, targets, bodies, centres, p, impulses, f.first, settings.held, m, f);
+    // Over ranks, a patch on a body that several ranks' rows share is not held: the ranks agree
+    // on such a body's velocity by averaging after every sweep, and rows that may pull as well
+    // as push kept a 3-rank pile jittering at 1-2 cm/s where unilateral ones let it rest.
+    const std::vector<char>* held =
+        sync && (split_here(given, bodies, p.body_a) || split_here(given, bodies, p.body_b))
+            ? nullptr
+            : settings.held;
+    build_patch(points, targets, bodies, centres, p, impulses, f.first, held, m, f);
     f.mu = friction_of(settings, p);
     if (!(f.mu > 0)) f.t1 = f.t2 = f.twist = 0;
     if (f.rolling >= 0)
