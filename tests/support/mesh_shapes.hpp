@@ -23,6 +23,19 @@
 
 namespace tem::testing_support {
 
+// The faces of a closed tube whose vertex i m + j is the j-th of m round the i-th of n rings,
+// both ways round (a torus's grid): 2 n m triangles, facing out where the rings run along the
+// tube's centre line and each ring's vertices turn as a torus's do about its tube.
+inline void add_tube_faces(TriangleMesh& mesh, int n, int m) {
+  auto at = [&](int i, int j) { return ((i + n) % n) * m + (j + m) % m; };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) {
+      const int a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+      mesh.faces.push_back({a, b, c});
+      mesh.faces.push_back({a, c, d});
+    }
+}
+
 // Torus about z: centre-line radius R, tube radius r, n segments around z, m around the tube.
 // Its volume tends to 2 pi^2 R r^2 as n, m grow; each (non-planar) quad of the grid is split into
 // two triangles, so the polyhedron is exactly the triangles given.
@@ -37,13 +50,7 @@ inline TriangleMesh torus_mesh(Real R, Real r, int n, int m) {
                                    (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)));
     }
   }
-  auto at = [&](int i, int j) { return ((i + n) % n) * m + (j + m) % m; };
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < m; ++j) {
-      const int a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
-      mesh.faces.push_back({a, b, c});
-      mesh.faces.push_back({a, c, d});
-    }
+  add_tube_faces(mesh, n, m);
   return mesh;
 }
 

@@ -13,6 +13,7 @@
 #include <numbers>
 
 #include "mesh/triangle_mesh.hpp"
+#include "mesh_shapes.hpp"  // this directory's, for the tests and the benchmark
 
 namespace tem::testing_support {
 
@@ -45,13 +46,7 @@ inline TriangleMesh bumpy_torus_mesh(int n = 500, int m = 75) {
                                    (1 + r * std::cos(v)) * std::sin(u), r * std::sin(v)));
     }
   }
-  auto at = [&](int i, int j) { return ((i + n) % n) * m + (j + m) % m; };
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < m; ++j) {
-      const int a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
-      mesh.faces.push_back({a, b, c});
-      mesh.faces.push_back({a, c, d});
-    }
+  add_tube_faces(mesh, n, m);
   return mesh;
 }
 
@@ -134,13 +129,7 @@ inline TriangleMesh knot_mesh(int n = 500, int m = 75) {
       mesh.vertices.push_back(centre + r * (std::cos(v) * normal - std::sin(v) * binormal));
     }
   }
-  auto at = [&](int i, int j) { return ((i + n) % n) * m + (j + m) % m; };
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < m; ++j) {
-      const int a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
-      mesh.faces.push_back({a, b, c});
-      mesh.faces.push_back({a, c, d});
-    }
+  add_tube_faces(mesh, n, m);
   return mesh;
 }
 
