@@ -23,11 +23,7 @@ unsigned long long cell_key(long long ix, long long iy, long long iz) {
 
 Aabb block_bounds(const Block& block, const BlockPose& pose) {
   Aabb box{pose.to_world(block.nodes()[0]), pose.to_world(block.nodes()[0])};
-  for (const Vec3& node : block.nodes()) {
-    const Vec3 p = pose.to_world(node);
-    box.min = box.min.cwiseMin(p);
-    box.max = box.max.cwiseMax(p);
-  }
+  for (const Vec3& node : block.nodes()) box.add(pose.to_world(node));
   return box;
 }
 

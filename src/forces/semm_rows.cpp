@@ -1,8 +1,8 @@
 #include "forces/semm_rows.hpp"
 
 #include <algorithm>
-#include <limits>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Eigenvalues>
 
