@@ -44,6 +44,9 @@ void print_summary(const Model& model, const State& state, const Workspace& w, d
                t.unconverged_steps, t.scaled_steps, t.patches / steps, t.points / steps,
                t.patches > 0 ? 1e6 * wall / static_cast<double>(t.patches) : 0.0, e.kinetic,
                e.potential, e.total());
+  if (model.scene.contact.max_substeps > model.scene.contact.substeps)
+    std::fprintf(stderr, "  sub-steps: %.2f per step on average, %d at most\n",
+                 static_cast<double>(t.substeps) / steps, t.max_substeps);
   if (t.corrected_steps > 0)
     std::fprintf(stderr, "  overlap correction: bodies moved apart in %lld of %lld steps\n",
                  t.corrected_steps, t.steps);

@@ -72,11 +72,12 @@ int main(int argc, char** argv) {
   CLI::App app{"Overlaps after each step, sorted by whether the step's detection saw the pair"};
   std::string scene_file;
   double dt = 0, duration = 0, share = 0.01;
-  int substeps = 0;
+  int substeps = 0, max_substeps = 0;
   app.add_option("scene", scene_file, "scene file")->required()->check(CLI::ExistingFile);
   app.add_option("--dt", dt, "time step (default: the scene's)");
   app.add_option("--duration", duration, "simulated seconds (default: the scene's)");
   app.add_option("--substeps", substeps, "contact.substeps (default: the scene's)");
+  app.add_option("--max-substeps", max_substeps, "contact.max_substeps (default: the scene's)");
   app.add_option("--share", share, "count overlaps deeper than this share of the smaller size");
   CLI11_PARSE(app, argc, argv);
 
@@ -88,6 +89,7 @@ int main(int argc, char** argv) {
   if (dt > 0) read.scene.time_step = dt;
   if (duration > 0) read.scene.duration = duration;
   if (substeps > 0) read.scene.contact.substeps = substeps;
+  if (max_substeps > 0) read.scene.contact.max_substeps = max_substeps;
   const Model model = build_model(read.scene);
   State state = initial_state(model);
   Workspace w;
@@ -130,7 +132,10 @@ int main(int argc, char** argv) {
               100 * share);
   print("pairs the step's detection did not see", missed);
   print("pairs it saw, not held", held);
-  std::printf("bodies that outran their margin: %lld; steps with unconverged sweeps: %lld\n",
-              w.times.outran_margin, w.times.unconverged_steps);
+  std::printf("bodies that outran their margin: %lld; steps with unconverged sweeps: %lld; "
+              "sub-steps a step: %.2f on average, %d at most\n",
+              w.times.outran_margin, w.times.unconverged_steps,
+              static_cast<double>(w.times.substeps) / static_cast<double>(std::max(steps, 1LL)),
+              w.times.max_substeps);
   return 0;
 }

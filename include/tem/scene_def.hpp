@@ -163,6 +163,11 @@ struct ContactDef {
   // step, then solved and integrated this many times at time_step / substeps, each sub-step
   // rebuilding the detected patches from their features. 1: one solve per detection, as before.
   int substeps = 1;
+  // Above substeps: the step takes as many more sub-steps, up to this many, as keep each
+  // contact's relative motion within one sub-step under substep_motion of the smaller body's
+  // size (src/simulation/substep_count.hpp). 0 (the default): always `substeps`.
+  int max_substeps = 0;
+  Real substep_motion = 0.015;
   // With contact before overlap: a block pair that has barely moved since its last separating-
   // axis search takes last step's features again (src/contact/pair_cache.hpp); false: every
   // pair is searched at every step. Not used over MPI ranks.
@@ -228,7 +233,8 @@ struct SceneDef {
   std::optional<SleepDef> sleep;
 };
 
-// The time one solve and one integration cover: the time step, or its part with sub-steps.
+// The time one solve and one integration cover: the time step, or its part with sub-steps (with
+// contact.max_substeps, at the step's fewest sub-steps; a step's own count is the Workspace's).
 inline Real substep_time(const SceneDef& scene) {
   return scene.time_step / scene.contact.substeps;
 }

@@ -59,9 +59,10 @@ std::string unsupported_reason(const SceneDef& scene) {
     return "over MPI ranks SEMM runs with contact.solver 'rows' (the default); 'blocks' is not "
            "distributed: run this scene without mpirun, or with the rows solver";
   // Each sub-step's solve would need the ghosts' forces returned between the sub-steps.
-  if (scene.contact.substeps > 1)
-    return "over MPI ranks TEM does not yet run sub-steps (contact.substeps > 1): run this scene "
-           "without mpirun (threads: --threads N), or with one sub-step";
+  if (scene.contact.substeps > 1 || scene.contact.max_substeps > 1)
+    return "over MPI ranks TEM does not yet run sub-steps (contact.substeps or "
+           "contact.max_substeps > 1): run this scene without mpirun (threads: --threads N), or "
+           "with one sub-step";
   // Granular processes change the bodies or watch them as a whole: not yet shared among ranks
   // (materials are: each contact's coefficients are its own).
   bool process = !scene.inlets.empty() || !scene.outlets.empty() || !scene.sensors.empty();

@@ -100,7 +100,8 @@ const KeyList kContactKeys = {"model",     "friction",   "restitution",
                               "points",    "law",        "tangential_stiffness",
                               "tolerance", "max_sweeps", "sweep_order",
                               "margin",    "solver",     "pairs",
-                              "substeps",  "pair_cache", "acceleration"};
+                              "substeps",  "pair_cache", "acceleration",
+                              "max_substeps", "substep_motion"};
 const KeyList kContainerKeys = {"min", "max", "material"};
 const KeyList kRegionKeys = {"min", "max"};
 const KeyList kWallKeys = {"point", "normal", "material", "removed_at"};
@@ -160,6 +161,11 @@ class SceneReader {
     if (const Json* j = Reader::get(root, "contact")) read_contact(*j, "contact", &scene->contact);
     // Sub-steps carry the points of contact before overlap through the step (refreshed_patches.hpp);
     // the other modes have no points to carry.
+    if (scene->contact.max_substeps > 1 && !contact_before_overlap(*scene))
+      r_.fail("contact.max_substeps",
+              "must be 1 unless contact is made before overlap (model \"semm\" with face "
+              "normals, corner points, the default integrator and a margin other than 0), got " +
+                  std::to_string(scene->contact.max_substeps));
     if (scene->contact.substeps > 1 && !contact_before_overlap(*scene))
       r_.fail("contact.substeps",
               "must be 1 unless contact is made before overlap (model \"semm\" with face "
@@ -279,6 +285,12 @@ class SceneReader {
     r_.read_number(j, path, "tolerance", &contact->tolerance, Bound::positive);
     r_.read_int(j, path, "max_sweeps", &contact->max_sweeps, 1, 1'000'000);
     r_.read_int(j, path, "substeps", &contact->substeps, 1, 1'000);
+    r_.read_int(j, path, "max_substeps", &contact->max_substeps, 1, 1'000);
+    r_.read_number(j, path, "substep_motion", &contact->substep_motion, Bound::positive);
+    if (contact->max_substeps > 0 && contact->max_substeps < contact->substeps)
+      r_.fail(child(path, "max_substeps"),
+              "must be at least substeps (" + std::to_string(contact->substeps) + "), got " +
+                  std::to_string(contact->max_substeps));
     r_.read_bool(j, path, "pair_cache", &contact->pair_cache);
     if (const Json* o = Reader::get(j, "sweep_order")) {
       if (auto coloured = r_.choice<bool>(*o, child(path, "sweep_order"),

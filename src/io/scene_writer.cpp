@@ -321,6 +321,10 @@ Json scene_to_json(const SceneDef& scene) {
   // Written only where they are not the default: a scene of the defaults writes what it wrote
   // before the keys existed, so that its checkpoints' fingerprints still match (checkpoint.hpp).
   if (!scene.contact.pair_cache) j["contact"]["pair_cache"] = false;
+  if (scene.contact.max_substeps > 0) {
+    j["contact"]["max_substeps"] = scene.contact.max_substeps;
+    j["contact"]["substep_motion"] = scene.contact.substep_motion;
+  }
   if (scene.contact.conjugate_gradients) j["contact"]["acceleration"] = "conjugate_gradients";
   if (!scene.contact.pairs.empty()) {
     Json pairs = Json::array();

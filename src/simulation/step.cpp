@@ -9,6 +9,7 @@
 #include "forces/overlap_correction.hpp"
 #include "process/motion.hpp"
 #include "process/sensors.hpp"
+#include "simulation/substep_count.hpp"
 #include "support/parallel.hpp"
 
 namespace tem {
@@ -117,6 +118,7 @@ void step(const Model& model, State& state, Workspace& w) {
 void find_contact_forces(const Model& model, const State& state, Workspace& w) {
   const SceneDef& scene = model.scene;
   Clock::time_point clock = Clock::now();
+  w.substeps = scene.contact.substeps;
   // A scene wholly asleep has no contact to find (dynamics/sleep.hpp).
   if (scene.sleep && everything_sleeps(model, state, w.loads, w.sleep, w.patches, w.forces)) return;
 
@@ -137,6 +139,8 @@ void find_contact_forces(const Model& model, const State& state, Workspace& w) {
     w.contact.separations.clear();
   }
   find_patches(model, patch_variant(scene), w.contact, w.patches);
+  // How many sub-steps this step takes, from how fast its contacts close and turn.
+  w.substeps = substeps_for_step(model, state, w.patches);
   w.times.narrow_phase += seconds_since(clock);
   w.times.block_pairs += w.contact.pairs_tested;
   w.times.cached_pairs += w.contact.pairs_cached;
@@ -144,15 +148,16 @@ void find_contact_forces(const Model& model, const State& state, Workspace& w) {
 
   // 4. Forces: the contact impulses of the scene's force model, as forces held over the step
   // (with sub-steps, over its first sub-step).
-  compute_contact_forces(model, state, w.patches, substep_time(scene), w.forces, loads, w.sync);
+  compute_contact_forces(model, state, w.patches, scene.time_step / w.substeps, w.forces, loads,
+                         w.sync);
   w.times.forces += seconds_since(clock);
 }
 
 void advance(const Model& model, State& state, Workspace& w) {
   const SceneDef& scene = model.scene;
   Clock::time_point clock = Clock::now();
-  const int substeps = scene.contact.substeps;
-  const Real h = substep_time(scene);
+  const int substeps = w.substeps;
+  const Real h = scene.time_step / substeps;
   const Real step_start_time = state.time;
   // Sub-steps (refreshed_patches.hpp): the bodies where the step's detection saw them (for the
   // reach check); the first sub-step's forces are already found.
@@ -193,6 +198,8 @@ void advance(const Model& model, State& state, Workspace& w) {
   w.times.integrate += seconds_since(clock);
 
   ++w.times.steps;
+  w.times.substeps += substeps;
+  w.times.max_substeps = std::max(w.times.max_substeps, substeps);
   w.times.patches += static_cast<long long>(w.patches.size());
   w.times.points += static_cast<long long>(w.forces.points.size());
   w.times.sweeps += sweeps;

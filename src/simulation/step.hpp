@@ -28,6 +28,8 @@ struct StageTimes {
   long long scaled_steps = 0;  // steps whose impulses were scaled down to add no energy
   long long corrected_steps = 0;  // steps whose overlap correction moved bodies
   long long outran_margin = 0;    // bodies that moved farther in a step than their reach
+  long long substeps = 0;         // sub-steps, summed over the steps, and the most one step took
+  int max_substeps = 0;
   long long patches = 0;          // contact patches and points, summed over the steps
   long long points = 0;
   // Block pairs tested with contact before overlap, and those that took last step's features
@@ -44,6 +46,8 @@ struct Workspace {
   // With contact.substeps > 1: the bodies at the step's detection, and the detected patches
   // rebuilt at the current sub-step (refreshed_patches.hpp) with their scratch.
   std::vector<BodyState> detected;
+  // The sub-steps of the step find_contact_forces found the forces for (substep_count.hpp).
+  int substeps = 1;
   std::vector<ContactPatch> substep_patches;
   RefreshScratch refreshed;
   // Forces and torques from outside (the public API's external_force / external_torque), held
