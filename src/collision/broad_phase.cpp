@@ -22,7 +22,7 @@ unsigned long long cell_key(long long ix, long long iy, long long iz) {
 }  // namespace
 
 Aabb block_bounds(const Block& block, const BlockPose& pose) {
-  Aabb box{pose.to_world(block.nodes()[0]), pose.to_world(block.nodes()[0])};
+  Aabb box = Aabb::empty();
   for (const Vec3& node : block.nodes()) box.add(pose.to_world(node));
   return box;
 }

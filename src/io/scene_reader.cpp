@@ -161,16 +161,17 @@ class SceneReader {
     if (const Json* j = Reader::get(root, "contact")) read_contact(*j, "contact", &scene->contact);
     // Sub-steps carry the points of contact before overlap through the step (refreshed_patches.hpp);
     // the other modes have no points to carry.
-    if (scene->contact.max_substeps > 1 && !contact_before_overlap(*scene))
-      r_.fail("contact.max_substeps",
-              "must be 1 unless contact is made before overlap (model \"semm\" with face "
-              "normals, corner points, the default integrator and a margin other than 0), got " +
-                  std::to_string(scene->contact.max_substeps));
-    if (scene->contact.substeps > 1 && !contact_before_overlap(*scene))
-      r_.fail("contact.substeps",
-              "must be 1 unless contact is made before overlap (model \"semm\" with face "
-              "normals, corner points, the default integrator and a margin other than 0), got " +
-                  std::to_string(scene->contact.substeps));
+    if (!contact_before_overlap(*scene)) {
+      const ContactDef& c = scene->contact;
+      for (const auto& [key, count] : {std::pair{"contact.max_substeps", c.max_substeps},
+                                       std::pair{"contact.substeps", c.substeps}}) {
+        if (count > 1)
+          r_.fail(key,
+                  "must be 1 unless contact is made before overlap (model \"semm\" with face "
+                  "normals, corner points, the default integrator and a margin other than 0), "
+                  "got " + std::to_string(count));
+      }
+    }
     // Conjugate gradients accelerate the rows solver's sweeps; the other solvers have none.
     if (scene->contact.conjugate_gradients &&
         (scene->contact.model != ContactModel::semm ||
