@@ -60,13 +60,18 @@ void print_summary(const Model& model, const State& state, const Workspace& w, d
   if (model.scene.sleep)
     std::fprintf(stderr, "  sleep: %lld of %zu bodies asleep at the end\n",
                  sleeping_bodies(state), state.bodies.size());
-  // Patch order keeps the sweeps on one thread: say so where threads were asked for and the
+  // Patch order shares the row solver's sweeps level by level, but the block solver and
+  // conjugate gradients keep them on one thread: say so where threads were asked for and the
   // sweeps were a real part of the work.
-  if (max_threads() > 1 && model.scene.contact.model == ContactModel::semm &&
-      !model.scene.contact.colour_sweeps && static_cast<double>(t.sweeps) / steps > 4)
+  const ContactDef& contact = model.scene.contact;
+  if (max_threads() > 1 && contact.model == ContactModel::semm && !contact.colour_sweeps &&
+      (contact.solver == ContactSolver::blocks || contact.conjugate_gradients) &&
+      static_cast<double>(t.sweeps) / steps > 4)
     std::fprintf(stderr,
                  "  note: the contact solver's sweeps ran on one thread (contact.sweep_order "
-                 "\"patches\", the default); \"colours\" shares them among the %d threads\n",
+                 "\"patches\" with %s); \"colours\" shares them among the %d threads\n",
+                 contact.solver == ContactSolver::blocks ? "solver \"blocks\""
+                                                         : "acceleration \"conjugate_gradients\"",
                  max_threads());
   if (t.outran_margin > 0)
     std::fprintf(stderr,

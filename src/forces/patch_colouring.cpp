@@ -61,4 +61,34 @@ void colour_patches(const std::vector<PatchFriction>& patches,
     out.order[static_cast<size_t>(next[static_cast<size_t>(key[k])]++)] = static_cast<int>(k);
 }
 
+void level_patches(const std::vector<PatchFriction>& patches,
+                   const std::vector<BodyResponse>& bodies, Colouring& out) {
+  // Bodies that impulses move; walls, fixed and driven bodies are only read by the sweeps.
+  auto moving = [&](int b) { return b >= 0 && bodies[b].inverse_mass > 0 ? b : -1; };
+  std::vector<int>& body_level = out.body_level;
+  body_level.assign(bodies.size(), -1);
+  std::vector<int>& level = out.colour;
+  level.resize(patches.size());
+  int levels = 0;
+  for (size_t k = 0; k < patches.size(); ++k) {
+    const int a = moving(patches[k].body_a), b = moving(patches[k].body_b);
+    const int l = 1 + std::max(a >= 0 ? body_level[a] : -1, b >= 0 ? body_level[b] : -1);
+    if (a >= 0) body_level[a] = l;
+    if (b >= 0) body_level[b] = l;
+    level[k] = l;
+    levels = std::max(levels, l + 1);
+  }
+  // Counting sort by level, patch order kept within a level.
+  std::vector<int>& start = out.start;
+  start.assign(static_cast<size_t>(levels) + 2, 0);
+  for (size_t k = 0; k < patches.size(); ++k) ++start[static_cast<size_t>(level[k]) + 1];
+  for (int l = 0; l < levels; ++l) start[l + 1] += start[l];
+  start[levels + 1] = start[levels];  // the empty serial "colour"
+  std::vector<int>& next = out.next;
+  next.assign(start.begin(), start.end() - 1);
+  out.order.resize(patches.size());
+  for (size_t k = 0; k < patches.size(); ++k)
+    out.order[static_cast<size_t>(next[static_cast<size_t>(level[k])]++)] = static_cast<int>(k);
+}
+
 }  // namespace tem

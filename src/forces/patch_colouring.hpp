@@ -30,11 +30,23 @@ struct Colouring {
   std::vector<std::uint64_t> used;  // per body, the colours its patches have taken
   std::vector<int> colour, key;     // per patch: its colour, and its colour and slab
   std::vector<int> count, next;     // per colour and slab
+  std::vector<int> body_level;      // per body, the level of its last patch (level_patches)
 };
 
 // Fills `out` (its vectors reused).
 void colour_patches(const std::vector<PatchFriction>& patches,
                     const std::vector<BodyResponse>& bodies, Colouring& out);
+
+// Patch order's own levels, as "colours": a patch's level is one more than the highest level
+// among the earlier patches on either of its moving bodies. Patches of one level share no moving
+// body, and each body's patches come level after level in patch order, so sweeping level by
+// level, with threads sharing a level, reads and writes every body's velocity in exactly the
+// sequence of the serial sweep in patch order: the same bits as one thread, patch by patch, at
+// any thread count (where colour_patches changes the order, and with it the answer). A settled
+// 1,000-coin pile's 2,900 patches fall into about 35 levels, a pour's crash's 960 into 13.
+// The last "colour" is empty: no patch is left to go one by one.
+void level_patches(const std::vector<PatchFriction>& patches,
+                   const std::vector<BodyResponse>& bodies, Colouring& out);
 
 // The largest impulse change and the largest impulse of a sweep, kept per thread (the maximum
 // does not depend on the order it is taken in). A cache line of its own: every patch's update
@@ -64,6 +76,58 @@ void by_colour(const std::vector<int>& start, std::vector<SweepSize>& sizes, Upd
       update(first + static_cast<int>(i), sizes[thread_index()]);
     });
   }
+}
+
+// Sweeps as by_colour, again and again, until `done(sizes)` says so after a sweep or `max_sweeps`
+// have run; returns how many ran. All of them in one parallel region, the colours (or levels)
+// parted by barriers: a region opened per colour and sweep cost more than the sweep's work where
+// levels are small (a pour's crash: 13 levels of 70 patches on average, up to 16 sub-steps of
+// 20 sweeps a step). `done` reads every thread's size and must give every thread the same
+// answer; each sweep starts with `sizes` cleared.
+template <class Update, class Done>
+int sweep_by_colour(const std::vector<int>& start, std::vector<SweepSize>& sizes, int max_sweeps,
+                    Update&& update, Done&& done) {
+  const int n_colours = static_cast<int>(start.size()) - 1;
+  const long long patches = start.back();
+  int swept = 0;
+  auto one_by_one = [&](SweepSize& size) {
+    for (int k = start[n_colours - 1]; k < start[n_colours]; ++k) update(k, size);
+  };
+#ifdef _OPENMP
+  if (patches > 64 && omp_get_max_threads() > 1) {
+#pragma omp parallel
+    {
+      SweepSize& mine = sizes[thread_index()];
+      for (int sweep = 1; sweep <= max_sweeps; ++sweep) {
+        mine = SweepSize{};  // the last sweep's sizes were all read before its barrier
+        for (int c = 0; c + 1 < n_colours; ++c) {
+#pragma omp for schedule(static)
+          for (int k = start[c]; k < start[c + 1]; ++k) update(k, mine);
+        }
+#pragma omp single
+        one_by_one(sizes[0]);
+        // After the single's barrier every size is final; all threads decide alike.
+        const bool stop = done(sizes);
+#pragma omp barrier
+        if (stop || sweep == max_sweeps) {
+#pragma omp single nowait
+          swept = sweep;
+          break;
+        }
+      }
+    }
+    return swept;
+  }
+#endif
+  for (int sweep = 1; sweep <= max_sweeps; ++sweep) {
+    std::fill(sizes.begin(), sizes.end(), SweepSize{});
+    for (int c = 0; c + 1 < n_colours; ++c)
+      for (int k = start[c]; k < start[c + 1]; ++k) update(k, sizes[0]);
+    one_by_one(sizes[0]);
+    swept = sweep;
+    if (done(sizes)) break;
+  }
+  return swept;
 }
 
 }  // namespace tem

@@ -179,8 +179,11 @@ void build_rolling(const std::vector<BodyResponse>& bodies, const PatchFriction&
 
 // Applies a rolling angular impulse d (about tangent1, tangent2) on B, its opposite on A.
 inline void apply_rolling(Memory& m, const Memory::RollingRow& r, int still, const Vec2& d) {
-  if (r.b != still) m.slots[r.b].angular += d.x() * r.turn_b1 + d.y() * r.turn_b2;
-  if (r.a != still) m.slots[r.a].angular -= d.x() * r.turn_a1 + d.y() * r.turn_a2;
+  // A driven body's turn is zero, and shared by the patches of one level or colour.
+  if (r.b != still && m.inverse_mass[r.b] != 0)
+    m.slots[r.b].angular += d.x() * r.turn_b1 + d.y() * r.turn_b2;
+  if (r.a != still && m.inverse_mass[r.a] != 0)
+    m.slots[r.a].angular -= d.x() * r.turn_a1 + d.y() * r.turn_a2;
 }
 
 // Relative rolling velocity (B's spin minus A's about tangent1, tangent2) in slots s.
@@ -387,6 +390,21 @@ SolverReport sweeps(Memory& m, const std::vector<int>& colours, const SolverSett
     m.direction.assign(m.before.size(), 0);
   }
   std::vector<Real>& step = m.before;
+  // Plain Gauss-Seidel on one process: every sweep in one parallel region.
+  auto sweep_size = [&]() {
+    SweepSize total;
+    for (const SweepSize& s : m.sizes) total.add(s.change, s.largest);
+    return total.largest > 0 ? total.change / total.largest : 0;
+  };
+  if (!cg && !settings.sync) {
+    report.sweeps = sweep_by_colour(
+        colours, m.sizes, settings.max_sweeps,
+        [&](int k, SweepSize& size) { update_patch(m, k, still, size); },
+        [&](const std::vector<SweepSize>&) { return sweep_size() <= settings.tolerance; });
+    report.change = sweep_size();
+    report.converged = report.change <= settings.tolerance;
+    return report;
+  }
   for (report.sweeps = 1; report.sweeps <= settings.max_sweeps; ++report.sweeps) {
     std::fill(m.sizes.begin(), m.sizes.end(), SweepSize{});
     by_colour(colours, m.sizes,
@@ -444,18 +462,27 @@ void reset_velocities(Memory& m, const std::vector<BodyResponse>& bodies) {
   m.slots[n] = SlotVelocity{};
 }
 
-// Applies every row's current impulse (the warm start); whether any was not zero.
+// Applies every row's current impulse (the warm start); whether any was not zero. In patch
+// order whatever the rows' layout (every normal row, then every friction row, then every rolling
+// row), so that the velocities' sums are the same bits however the sweeps go.
 bool apply_all(Memory& m, int still) {
   bool any = false;
-  for (const Memory::NormalRow& r : m.rows) {
-    any = any || r.impulse != 0;
-    apply_normal(m, r, still, r.impulse);
+  for (const int j : m.place_of_patch) {
+    const Memory::FrictionRow& f = m.friction[j];
+    for (int i = f.first; i < f.last; ++i) {
+      const Memory::NormalRow& r = m.rows[i];
+      any = any || r.impulse != 0;
+      apply_normal(m, r, still, r.impulse);
+    }
   }
-  for (const Memory::FrictionRow& f : m.friction) {
+  for (const int j : m.place_of_patch) {
+    const Memory::FrictionRow& f = m.friction[j];
     any = any || f.t1 != 0 || f.t2 != 0 || f.twist != 0;
     apply_friction(m, f, still, Vec3(f.t1, f.t2, f.twist));
   }
-  for (const Memory::RollingRow& r : m.rolling) {
+  for (const int j : m.place_of_patch) {
+    if (m.friction[j].rolling < 0) continue;
+    const Memory::RollingRow& r = m.rolling[m.friction[j].rolling];
     any = any || r.r1 != 0 || r.r2 != 0;
     apply_rolling(m, r, still, Vec2(r.r1, r.r2));
   }
@@ -497,15 +524,19 @@ Real energy_scale(const Memory& m, const std::vector<BodyResponse>& bodies,
     free[b].angular = bodies[b].angular_velocity;
   }
   free[n] = SlotVelocity{};
+  // Summed in patch order whatever the rows' layout (apply_all).
   Real added = 0, curvature = 0;
-  for (size_t r = 0; r < m.rows.size(); ++r) {
-    const Memory::NormalRow& row = m.rows[r];
-    if (row.impulse == 0) continue;
-    const Real after = row_velocity(row, m.slots);
-    added += row.impulse * (start[m.point_of_row[r]] + after) / 2;
-    curvature += row.impulse * (after - row_velocity(row, free)) / 2;
+  for (const int p : m.place_of_patch) {
+    for (int r = m.friction[p].first; r < m.friction[p].last; ++r) {
+      const Memory::NormalRow& row = m.rows[r];
+      if (row.impulse == 0) continue;
+      const Real after = row_velocity(row, m.slots);
+      added += row.impulse * (start[m.point_of_row[r]] + after) / 2;
+      curvature += row.impulse * (after - row_velocity(row, free)) / 2;
+    }
   }
-  for (const Memory::FrictionRow& f : m.friction) {
+  for (const int p : m.place_of_patch) {
+    const Memory::FrictionRow& f = m.friction[p];
     const Vec3 j(f.t1, f.t2, f.twist);
     if (j == Vec3::Zero()) continue;
     const Vec3 after = row_slip(f, m.slots);
@@ -513,7 +544,9 @@ Real energy_scale(const Memory& m, const std::vector<BodyResponse>& bodies,
     curvature += j.dot(after - row_slip(f, free)) / 2;
   }
   // Rolling rows: the angular impulse does the work h.(w_start + w_after) / 2 likewise.
-  for (const Memory::RollingRow& r : m.rolling) {
+  for (const int p : m.place_of_patch) {
+    if (m.friction[p].rolling < 0) continue;
+    const Memory::RollingRow& r = m.rolling[m.friction[p].rolling];
     const Vec2 h(r.r1, r.r2);
     if (h == Vec2::Zero()) continue;
     const Vec2 after = rolling_velocity(r, m.slots);
@@ -557,10 +590,15 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
   m.inverse_mass[n] = 0;
   reset_velocities(m, bodies);
 
-  // The order of the sweeps: by colour, or patch order as one serial colour.
+  // The order of the sweeps: by colour; or patch order, level by level where threads share
+  // the levels (level_patches: the serial sweep's bits); or patch order as one serial colour,
+  // on one thread (its rows in patch order lie closer in memory: 6 % faster than by level) and
+  // for conjugate gradients, whose sums run over the rows' layout.
   Colouring& colouring = m.colouring;
   if (settings.colour_sweeps) {
     colour_patches(patches, bodies, colouring);
+  } else if (!settings.conjugate_gradients && max_threads() > 1) {
+    level_patches(patches, bodies, colouring);
   } else {
     colouring.order.resize(patches.size());
     for (size_t k = 0; k < patches.size(); ++k) colouring.order[k] = static_cast<int>(k);
@@ -572,6 +610,7 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
   m.point_of_row.resize(points.size());
   m.friction.resize(n_patches);
   m.patch_of_friction.resize(n_patches);
+  m.place_of_patch.resize(n_patches);
   int next = 0, rolling = 0;
   for (size_t j = 0; j < n_patches; ++j) {
     const PatchFriction& p = patches[colouring.order[j]];
@@ -600,6 +639,7 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
     if (f.rolling >= 0)
       build_rolling(bodies, p, rolling_limit_of(settings, p), f, m.rolling[f.rolling]);
     m.patch_of_friction[j] = colouring.order[j];
+    m.place_of_patch[colouring.order[j]] = static_cast<int>(j);
   });
 
   bool warm = apply_all(m, still);

@@ -13,10 +13,13 @@
 // convergence from step to step, as Box2D, Box3D and Jolt do.
 //
 // Order: each patch's normal rows, then its friction (2x2 tangential block and twist, with the
-// start-of-step energy rule of semm.cpp), patch after patch; with colour_sweeps the patches go
-// colour by colour and threads share a colour (patch_colouring.hpp), the same bits at any thread
-// count. Rows are built and laid out in that order, contiguous per patch, in memory reused from
-// step to step: nothing is allocated once the pile's size has been seen.
+// start-of-step energy rule of semm.cpp), patch after patch. The threads share each sweep
+// level by level (patch_colouring.hpp, level_patches), with the bits of one thread going patch
+// by patch; with colour_sweeps the patches go colour by colour and threads share a colour, the
+// same bits at any thread count but another answer. Rows are built and laid out in the sweeps'
+// order, contiguous per patch, in memory reused from step to step: nothing is allocated once the
+// pile's size has been seen. Sums over all rows (the warm start, the energy check) still run in
+// patch order, so that the layout never changes a bit.
 #pragma once
 
 #include <vector>
@@ -71,6 +74,7 @@ struct RowSolverMemory {
   std::vector<FrictionRow> friction;
   std::vector<RollingRow> rolling;
   std::vector<int> point_of_row, patch_of_friction;
+  std::vector<int> place_of_patch;  // where each patch's rows lie: patch_of_friction's inverse
   std::vector<SweepSize> sizes;
   std::vector<SlotVelocity> free;  // the velocities without impulses: energy check (semm_rows.cpp)
   std::vector<BodyResponse> now;  // the bodies after stopped sweeps (semm_rows.cpp)
