@@ -462,31 +462,33 @@ void reset_velocities(Memory& m, const std::vector<BodyResponse>& bodies) {
   m.slots[n] = SlotVelocity{};
 }
 
-// Applies every row's current impulse (the warm start); whether any was not zero. In patch
-// order whatever the rows' layout (every normal row, then every friction row, then every rolling
-// row), so that the velocities' sums are the same bits however the sweeps go.
-bool apply_all(Memory& m, int still) {
+// Applies every row's current impulse (the warm start); whether any was not zero. Every normal
+// row, then every friction row, then every rolling row, each pass colour by colour (or level by
+// level) as the sweeps go, so that each body's velocity sums its rows in the serial sweep's order
+// at any thread count.
+bool apply_all(Memory& m, const std::vector<int>& colours, int still) {
   bool any = false;
-  for (const int j : m.place_of_patch) {
-    const Memory::FrictionRow& f = m.friction[j];
-    for (int i = f.first; i < f.last; ++i) {
-      const Memory::NormalRow& r = m.rows[i];
-      any = any || r.impulse != 0;
-      apply_normal(m, r, still, r.impulse);
-    }
-  }
-  for (const int j : m.place_of_patch) {
-    const Memory::FrictionRow& f = m.friction[j];
+  for (const Memory::NormalRow& r : m.rows) any = any || r.impulse != 0;
+  for (const Memory::FrictionRow& f : m.friction)
     any = any || f.t1 != 0 || f.t2 != 0 || f.twist != 0;
+  for (const Memory::RollingRow& r : m.rolling) any = any || r.r1 != 0 || r.r2 != 0;
+  if (!any) return false;
+  by_colour(colours, m.sizes, [&](int k, SweepSize&) {
+    const Memory::FrictionRow& f = m.friction[k];
+    for (int i = f.first; i < f.last; ++i) apply_normal(m, m.rows[i], still, m.rows[i].impulse);
+  });
+  by_colour(colours, m.sizes, [&](int k, SweepSize&) {
+    const Memory::FrictionRow& f = m.friction[k];
     apply_friction(m, f, still, Vec3(f.t1, f.t2, f.twist));
+  });
+  if (!m.rolling.empty()) {
+    by_colour(colours, m.sizes, [&](int k, SweepSize&) {
+      if (m.friction[k].rolling < 0) return;
+      const Memory::RollingRow& r = m.rolling[m.friction[k].rolling];
+      apply_rolling(m, r, still, Vec2(r.r1, r.r2));
+    });
   }
-  for (const int j : m.place_of_patch) {
-    if (m.friction[j].rolling < 0) continue;
-    const Memory::RollingRow& r = m.rolling[m.friction[j].rolling];
-    any = any || r.r1 != 0 || r.r2 != 0;
-    apply_rolling(m, r, still, Vec2(r.r1, r.r2));
-  }
-  return any;
+  return true;
 }
 
 // Normal relative velocity of a row, and slip of a friction row, in slots s.
@@ -514,7 +516,7 @@ inline Vec3 row_slip(const Memory::FrictionRow& f, const std::vector<SlotVelocit
 // positive. Scaling every impulse by s gives E(s) = s B + s^2 A with A = 1/2 j.K j >= 0 and
 // B = E - A; the largest s with E(s) <= 0 is -B/A. Every constraint's sign survives the scaling
 // (normal impulses stay >= 0, friction inside its cone), only the push is a hair weaker.
-Real energy_scale(const Memory& m, const std::vector<BodyResponse>& bodies,
+Real energy_scale(Memory& m, const std::vector<BodyResponse>& bodies,
                   const std::vector<Real>& start, std::vector<SlotVelocity>& free,
                   SolverSync* sync) {
   const size_t n = bodies.size();
@@ -524,27 +526,43 @@ Real energy_scale(const Memory& m, const std::vector<BodyResponse>& bodies,
     free[b].angular = bodies[b].angular_velocity;
   }
   free[n] = SlotVelocity{};
-  // Summed in patch order whatever the rows' layout (apply_all).
-  Real added = 0, curvature = 0;
-  for (const int p : m.place_of_patch) {
-    for (int r = m.friction[p].first; r < m.friction[p].last; ++r) {
+  // Each row's terms on its own, shared among the threads; then summed in the serial sweep's
+  // order (serial_order), rows without impulse left out, the same bits at any thread count.
+  std::vector<Memory::EnergyTerm>& rows = m.row_energy;
+  std::vector<Memory::EnergyTerm>& patches = m.patch_energy;
+  rows.resize(m.rows.size());
+  patches.resize(m.friction.size());
+  parallel_for(static_cast<long long>(m.friction.size()), 64, [&](long long p) {
+    const Memory::FrictionRow& f = m.friction[p];
+    for (int r = f.first; r < f.last; ++r) {
       const Memory::NormalRow& row = m.rows[r];
       if (row.impulse == 0) continue;
       const Real after = row_velocity(row, m.slots);
-      added += row.impulse * (start[m.point_of_row[r]] + after) / 2;
-      curvature += row.impulse * (after - row_velocity(row, free)) / 2;
+      rows[r] = {row.impulse * (start[m.point_of_row[r]] + after) / 2,
+                 row.impulse * (after - row_velocity(row, free)) / 2};
+    }
+    const Vec3 j(f.t1, f.t2, f.twist);
+    if (j == Vec3::Zero()) return;
+    const Vec3 after = row_slip(f, m.slots);
+    patches[p] = {j.dot(f.start_slip + after) / 2, j.dot(after - row_slip(f, free)) / 2};
+  });
+  Real added = 0, curvature = 0;
+  for (const int p : m.serial_order) {
+    for (int r = m.friction[p].first; r < m.friction[p].last; ++r) {
+      if (m.rows[r].impulse == 0) continue;
+      added += rows[r].added;
+      curvature += rows[r].curvature;
     }
   }
-  for (const int p : m.place_of_patch) {
+  for (const int p : m.serial_order) {
     const Memory::FrictionRow& f = m.friction[p];
-    const Vec3 j(f.t1, f.t2, f.twist);
-    if (j == Vec3::Zero()) continue;
-    const Vec3 after = row_slip(f, m.slots);
-    added += j.dot(f.start_slip + after) / 2;
-    curvature += j.dot(after - row_slip(f, free)) / 2;
+    if (Vec3(f.t1, f.t2, f.twist) == Vec3::Zero()) continue;
+    added += patches[p].added;
+    curvature += patches[p].curvature;
   }
-  // Rolling rows: the angular impulse does the work h.(w_start + w_after) / 2 likewise.
-  for (const int p : m.place_of_patch) {
+  // Rolling rows: the angular impulse does the work h.(w_start + w_after) / 2 likewise (few
+  // patches have them).
+  for (const int p : m.serial_order) {
     if (m.friction[p].rolling < 0) continue;
     const Memory::RollingRow& r = m.rolling[m.friction[p].rolling];
     const Vec2 h(r.r1, r.r2);
@@ -595,9 +613,11 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
   // on one thread (its rows in patch order lie closer in memory: 6 % faster than by level) and
   // for conjugate gradients, whose sums run over the rows' layout.
   Colouring& colouring = m.colouring;
+  const bool levels =
+      !settings.colour_sweeps && !settings.conjugate_gradients && max_threads() > 1;
   if (settings.colour_sweeps) {
     colour_patches(patches, bodies, colouring);
-  } else if (!settings.conjugate_gradients && max_threads() > 1) {
+  } else if (levels) {
     level_patches(patches, bodies, colouring);
   } else {
     colouring.order.resize(patches.size());
@@ -610,7 +630,7 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
   m.point_of_row.resize(points.size());
   m.friction.resize(n_patches);
   m.patch_of_friction.resize(n_patches);
-  m.place_of_patch.resize(n_patches);
+  m.serial_order.resize(n_patches);
   int next = 0, rolling = 0;
   for (size_t j = 0; j < n_patches; ++j) {
     const PatchFriction& p = patches[colouring.order[j]];
@@ -639,10 +659,12 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
     if (f.rolling >= 0)
       build_rolling(bodies, p, rolling_limit_of(settings, p), f, m.rolling[f.rolling]);
     m.patch_of_friction[j] = colouring.order[j];
-    m.place_of_patch[colouring.order[j]] = static_cast<int>(j);
+    // Levels reproduce the sweep in patch order; colours are a serial order of their own.
+    m.serial_order[levels ? colouring.order[j] : j] = static_cast<int>(j);
   });
 
-  bool warm = apply_all(m, still);
+  m.sizes.resize(static_cast<size_t>(max_threads()));
+  bool warm = apply_all(m, colouring.start, still);
   if (sync) {
     sync->average(m.slots);
     warm = sync->sum(warm ? 1 : 0) > 0;
@@ -685,10 +707,10 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
   }
   if (impulses_checked)
     report.scale = energy_scale(m, bodies, start, m.free, sync);
-  // Results back in the caller's order.
-  for (size_t r = 0; r < m.rows.size(); ++r)
-    impulses[m.point_of_row[r]].normal = report.scale * m.rows[r].impulse;
-  for (size_t j = 0; j < n_patches; ++j) {
+  // Results back in the caller's order, patch by patch.
+  parallel_for(static_cast<long long>(n_patches), 256, [&](long long j) {
+    for (int r = m.friction[j].first; r < m.friction[j].last; ++r)
+      impulses[m.point_of_row[r]].normal = report.scale * m.rows[r].impulse;
     PatchFriction& p = patches[m.patch_of_friction[j]];
     p.t1 = report.scale * m.friction[j].t1;
     p.t2 = report.scale * m.friction[j].t2;
@@ -696,7 +718,7 @@ SolverReport solve_semm_rows(const std::vector<ContactPoint>& points,
     const int r = m.friction[j].rolling;
     p.roll1 = r >= 0 ? report.scale * m.rolling[r].r1 : 0;
     p.roll2 = r >= 0 ? report.scale * m.rolling[r].r2 : 0;
-  }
+  });
   return report;
 }
 

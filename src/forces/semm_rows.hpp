@@ -74,7 +74,14 @@ struct RowSolverMemory {
   std::vector<FrictionRow> friction;
   std::vector<RollingRow> rolling;
   std::vector<int> point_of_row, patch_of_friction;
-  std::vector<int> place_of_patch;  // where each patch's rows lie: patch_of_friction's inverse
+  // Where the patches' rows lie, in the order of the serial sweep the threads reproduce: patch
+  // order for levels, the layout itself for colours and on one thread. Sums over all rows (the
+  // energy check) run in it.
+  std::vector<int> serial_order;
+  struct EnergyTerm {
+    Real added = 0, curvature = 0;  // energy_scale's, for one row
+  };
+  std::vector<EnergyTerm> row_energy, patch_energy;
   std::vector<SweepSize> sizes;
   std::vector<SlotVelocity> free;  // the velocities without impulses: energy check (semm_rows.cpp)
   std::vector<BodyResponse> now;  // the bodies after stopped sweeps (semm_rows.cpp)
