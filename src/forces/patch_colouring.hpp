@@ -88,7 +88,7 @@ void by_colour(const std::vector<int>& start, std::vector<SweepSize>& sizes, Upd
 // with `sizes` cleared.
 // Colours (levels) smaller than this go on one thread in sweep_by_colour: a barrier and the
 // velocities' move between the cores cost more than sharing a few patches saves (a rotating
-// drum's bed: 50 levels of about 10 patches behind two large ones, 1.2 times slower shared).
+// drum's bed: 50 levels of about 10 patches behind two large ones, 1.6 times slower shared).
 constexpr int kSharedColour = 32;
 
 // Whether threads sharing the colours save more than they cost: at least half the patches in
