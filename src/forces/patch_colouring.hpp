@@ -105,14 +105,11 @@ inline bool worth_sharing(const std::vector<int>& start) {
 template <class Update, class Done>
 int sweep_by_colour(const std::vector<int>& start, std::vector<SweepSize>& sizes, int max_sweeps,
                     Update&& update, Done&& done) {
-  const int n_colours = static_cast<int>(start.size()) - 1;
   const long long patches = start.back();
   int swept = 0;
-  auto one_by_one = [&](SweepSize& size) {
-    for (int k = start[n_colours - 1]; k < start[n_colours]; ++k) update(k, size);
-  };
 #ifdef _OPENMP
   if (patches > 64 && omp_get_max_threads() > 1 && worth_sharing(start)) {
+    const int n_colours = static_cast<int>(start.size()) - 1;
 #pragma omp parallel
     {
       SweepSize& mine = sizes[thread_index()];
@@ -153,9 +150,7 @@ int sweep_by_colour(const std::vector<int>& start, std::vector<SweepSize>& sizes
 #endif
   for (int sweep = 1; sweep <= max_sweeps; ++sweep) {
     std::fill(sizes.begin(), sizes.end(), SweepSize{});
-    for (int c = 0; c + 1 < n_colours; ++c)
-      for (int k = start[c]; k < start[c + 1]; ++k) update(k, sizes[0]);
-    one_by_one(sizes[0]);
+    for (long long k = 0; k < patches; ++k) update(static_cast<int>(k), sizes[0]);  // in order
     swept = sweep;
     if (done(sizes)) break;
   }
