@@ -202,6 +202,9 @@ TEST(SubStepCount, WrongKeysAreRefusedWithWhereAndWhy) {
   EXPECT_NE(penalty.find("before overlap"), std::string::npos) << penalty;
   const std::string motion = refusal(R"("max_substeps": 4, "substep_motion": 0)");
   EXPECT_NE(motion.find("contact.substep_motion"), std::string::npos) << motion;
+  const std::string alone = refusal(R"("substeps": 4, "substep_motion": 0.01)");
+  EXPECT_NE(alone.find("contact.substep_motion"), std::string::npos) << alone;
+  EXPECT_NE(alone.find("without max_substeps"), std::string::npos) << alone;
   EXPECT_EQ(refusal(R"("substeps": 4, "max_substeps": 4)"), "");
 }
 

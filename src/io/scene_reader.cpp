@@ -288,6 +288,11 @@ class SceneReader {
     r_.read_int(j, path, "substeps", &contact->substeps, 1, 1'000);
     r_.read_int(j, path, "max_substeps", &contact->max_substeps, 1, 1'000);
     r_.read_number(j, path, "substep_motion", &contact->substep_motion, Bound::positive);
+    // Only the choice of sub-steps per step reads it: a scene that sets it alone would run with
+    // `substeps` fixed while its author believes the count follows the motion.
+    if (Reader::get(j, "substep_motion") && !Reader::get(j, "max_substeps"))
+      r_.fail(child(path, "substep_motion"),
+              "has no effect without max_substeps (the most sub-steps a step may take)");
     if (contact->max_substeps > 0 && contact->max_substeps < contact->substeps)
       r_.fail(child(path, "max_substeps"),
               "must be at least substeps (" + std::to_string(contact->substeps) + "), got " +
