@@ -11,6 +11,11 @@ cheaper), and the table says so.
   /usr/bin/python3 tools/runs_in_turn.py SCENE BINARY [BINARY ...] [--rounds N] [--threads T]
       [--resume-from DIR]
 
+For two threads this is not enough: the best of a few rounds says more about the spell a run met
+than about the code (a change worth 3-4 % of the forces stage came out 1.13-1.28x faster here).
+Where the two versions give the same bits, put both in one binary and alternate them call by call,
+timing each with a steady clock (docs/benchmarks.md, "Measuring two threads on a noisy machine").
+
 --resume-from copies DIR (a finished `tem run`, e.g. a settled pile) before each run and resumes
 it (`tem run SCENE --resume`: SCENE's duration must reach past the checkpoint). Prints, per
 binary, the best and median wall seconds and the stages (ms a step) of its best run, and the
