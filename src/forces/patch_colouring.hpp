@@ -78,14 +78,6 @@ void by_colour(const std::vector<int>& start, std::vector<SweepSize>& sizes, Upd
   }
 }
 
-// Sweeps as by_colour, again and again, until `done(sizes)` says so after a sweep or `max_sweeps`
-// have run; returns how many ran. All of them in one parallel region, the colours (or levels)
-// parted by barriers (0.66 us each on the project's machine), where by_colour opens a region per
-// colour and sweep and leaves colours under 65 patches to one thread: a pour's crash has 13
-// levels of 70 patches on average and up to 16 sub-steps of 20 sweeps a step. (Measured against
-// by_colour on the 1,000-coin crash, the two took the same time within the machine's noise.)
-// `done` reads every thread's size and must give every thread the same answer; each sweep starts
-// with `sizes` cleared.
 // Colours (levels) smaller than this go on one thread in sweep_by_colour: a barrier and the
 // velocities' move between the cores cost more than sharing a few patches saves (a rotating
 // drum's bed: 50 levels of about 10 patches behind two large ones, 1.6 times slower shared).
@@ -102,6 +94,14 @@ inline bool worth_sharing(const std::vector<int>& start) {
   return 2 * shared >= start.back();
 }
 
+// Sweeps as by_colour, again and again, until `done(sizes)` says so after a sweep or `max_sweeps`
+// have run; returns how many ran. All of them in one parallel region, the colours (or levels)
+// parted by barriers (0.66 us each on the project's machine), where by_colour opens a region per
+// colour and sweep and leaves colours under 65 patches to one thread: a pour's crash has 13
+// levels of 70 patches on average and up to 16 sub-steps of 20 sweeps a step. (Measured against
+// by_colour on the 1,000-coin crash, the two took the same time within the machine's noise.)
+// `done` reads every thread's size and must give every thread the same answer; each sweep starts
+// with `sizes` cleared.
 template <class Update, class Done>
 int sweep_by_colour(const std::vector<int>& start, std::vector<SweepSize>& sizes, int max_sweeps,
                     Update&& update, Done&& done) {
