@@ -32,9 +32,8 @@ DrivenPose motion_pose(const Body& body, Real t) {
   return {x, r * g0};
 }
 
-void move_driven_bodies(const Model& model, State& state) {
-  // The velocities of the coming sub-step (with one sub-step, of the step).
-  const Real t = state.time, dt = substep_time(model.scene);
+void move_driven_bodies(const Model& model, State& state, Real dt) {
+  const Real t = state.time;
   for (size_t b = 0; b < model.bodies.size(); ++b) {
     const Body& body = model.bodies[b];
     if (!body.motion || body.fixed) continue;

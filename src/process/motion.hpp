@@ -27,9 +27,11 @@ struct DrivenPose {
 DrivenPose motion_pose(const Body& body, Real t);
 
 // Puts every body with a motion at its pose at state.time and gives it the velocities of the
-// step (or sub-step, contact.substeps) that starts there (the centre's mean velocity and the
-// mean angular velocity).
-void move_driven_bodies(const Model& model, State& state);
+// sub-step of length h that starts there (the centre's mean velocity and the mean angular
+// velocity). h is the step's own sub-step: with contact.max_substeps a step's count is chosen
+// after its detection (find_contact_forces), which gives the driven bodies their velocities for
+// it; until then they hold those of the fewest sub-steps (substep_time).
+void move_driven_bodies(const Model& model, State& state, Real h);
 
 // Whether the scene has bodies with a prescribed motion.
 bool has_motion(const Model& model);

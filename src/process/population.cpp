@@ -235,7 +235,7 @@ size_t population_capacity(const Model& model) {
 
 void start_population(Model& model, State& state, const PopulationLinks& links,
                       std::vector<RemovedBody>& removed) {
-  if (model.any_motion) move_driven_bodies(model, state);
+  if (model.any_motion) move_driven_bodies(model, state, substep_time(model.scene));
   if (model.bodies_come_and_go) update_population(model, state, links, removed);
 }
 

@@ -101,8 +101,10 @@ bool integrate_substep(const Model& model, State& state, Workspace& w, Real h, b
   } else {
     state.time = step_start_time + (substep + 1) * h;
   }
-  // Bodies with a prescribed motion go where it puts them at the new time.
-  if (model.any_motion) move_driven_bodies(model, state);
+  // Bodies with a prescribed motion go where it puts them at the new time, with the velocities
+  // of the step's next sub-step (after its last, of the next step's fewest: find_contact_forces
+  // gives them those of its own count).
+  if (model.any_motion) move_driven_bodies(model, state, last ? substep_time(scene) : h);
   // 7. Sensors: plane crossings and the contact forces on the bodies they watch.
   if (sensing) accumulate_sensors(model, w.before, state, w.forces);
   return corrected;
@@ -115,10 +117,14 @@ void step(const Model& model, State& state, Workspace& w) {
   advance(model, state, w);
 }
 
-void find_contact_forces(const Model& model, const State& state, Workspace& w) {
+void find_contact_forces(const Model& model, State& state, Workspace& w) {
   const SceneDef& scene = model.scene;
   Clock::time_point clock = Clock::now();
   w.substeps = scene.contact.substeps;
+  // Bodies with a prescribed motion hold the velocities of the fewest sub-steps until this step's
+  // count is chosen (below), so that the count, and a second call at the same state, find them so.
+  const bool counted = model.any_motion && scene.contact.max_substeps > 0;
+  if (counted) move_driven_bodies(model, state, substep_time(scene));
   // A scene wholly asleep has no contact to find (dynamics/sleep.hpp).
   if (scene.sleep && everything_sleeps(model, state, w.loads, w.sleep, w.patches, w.forces)) return;
 
@@ -141,6 +147,10 @@ void find_contact_forces(const Model& model, const State& state, Workspace& w) {
   find_patches(model, patch_variant(scene), w.contact, w.patches);
   // How many sub-steps this step takes, from how fast its contacts close and turn.
   w.substeps = substeps_for_step(model, state, w.patches);
+  // A step of more sub-steps gives them the chord of its own sub-step: the mean velocity over a
+  // longer one is off by their acceleration times half the difference (a shaker's at its turn).
+  if (counted && w.substeps != scene.contact.substeps)
+    move_driven_bodies(model, state, scene.time_step / w.substeps);
   w.times.narrow_phase += seconds_since(clock);
   w.times.block_pairs += w.contact.pairs_tested;
   w.times.cached_pairs += w.contact.pairs_cached;

@@ -63,8 +63,10 @@ struct Workspace {
   SleepWorkspace sleep;
 };
 
-// Stages 1-4 at `state`: the patches and the contact forces of the step that starts there.
-void find_contact_forces(const Model& model, const State& state, Workspace& workspace);
+// Stages 1-4 at `state`: the patches and the contact forces of the step that starts there. It
+// changes the state only in the velocities of bodies with a prescribed motion, which it sets to
+// those of the step's own sub-step once their count is chosen (process/motion.hpp).
+void find_contact_forces(const Model& model, State& state, Workspace& workspace);
 
 // Stage 5: integrates with the forces of the last find_contact_forces, which must have been
 // called on this same state, and the workspace's external loads.
