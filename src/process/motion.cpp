@@ -32,18 +32,18 @@ DrivenPose motion_pose(const Body& body, Real t) {
   return {x, r * g0};
 }
 
-void move_driven_bodies(const Model& model, State& state, Real dt) {
+void move_driven_bodies(const Model& model, State& state, Real h) {
   const Real t = state.time;
   for (size_t b = 0; b < model.bodies.size(); ++b) {
     const Body& body = model.bodies[b];
     if (!body.motion || body.fixed) continue;
-    const DrivenPose now = motion_pose(body, t), next = motion_pose(body, t + dt);
+    const DrivenPose now = motion_pose(body, t), next = motion_pose(body, t + h);
     BodyState& s = state.bodies[b];
     s.x = now.x;
     s.g = now.g;
-    s.v = (next.x - now.x) / dt;
-    const Real turning = moving_time(*body.motion, t + dt) - moving_time(*body.motion, t);
-    s.omega = now.g.transpose() * (body.motion->angular_velocity * (turning / dt));
+    s.v = (next.x - now.x) / h;
+    const Real turning = moving_time(*body.motion, t + h) - moving_time(*body.motion, t);
+    s.omega = now.g.transpose() * (body.motion->angular_velocity * (turning / h));
   }
 }
 
