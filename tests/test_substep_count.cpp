@@ -6,9 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <string>
 
 #include <nlohmann/json.hpp>
