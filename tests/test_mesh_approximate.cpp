@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "mesh/cut_tree.hpp"
 #include "mesh/mesh_decomposition.hpp"
 #include "mesh/mesh_check.hpp"
 #include "mesh/hull_polyhedron.hpp"
@@ -153,12 +154,12 @@ TEST(MeshApprox, HoledCubeKeepsItsHole) {
 // Bounds on the torus's over-coverage and Hausdorff distance. Measured when the distance-led
 // cutting and the merge pass came in (issue 21): 3.49 %, and 1.45 % of the diagonal (5.32 % and
 // 2.6 % before); 3.17 % and 1.26 % with tilted planes and pieces; 2.72 % and 1.26 % since
-// neighbours of different cells merge and the last cuts are chosen without the look ahead. For
-// scale, 16 equal sectors would exceed the mesh by 1.45 %. The cutter is deterministic, so the
-// volume bound is the measured figure rounded up to a whole per cent: a change that cuts worse
-// fails here. The distance bound is issue 21's target, 2 %: the figure is found to 0.25 % of the
+// neighbours of different cells merge and the last cuts are chosen without the look ahead;
+// 1.71 % and 0.64 % since the planes are moved. For scale, 16 equal sectors would exceed the
+// mesh by 1.45 %. The cutter is deterministic, so the volume bound is the measured figure
+// rounded up to a whole per cent: a change that cuts worse fails here. The distance bound is issue 21's target, 2 %: the figure is found to 0.25 % of the
 // diagonal (1.45 + 0.25 < 2), so it cannot fail by imprecision alone.
-constexpr Real kTorusOverCoverage = 0.03;
+constexpr Real kTorusOverCoverage = 0.02;
 constexpr Real kTorusHausdorff = 0.02;
 
 TEST(MeshApprox, TorusBlocksAreDisjointAndKeepTheHole) {
@@ -405,3 +406,55 @@ TEST(MeshApprox, PiecesThatACutLeavesBecomeBlocks) {
 
 }  // namespace test_mesh_approximate
 }  // namespace tem
+
+namespace tem::test_mesh_approximate {
+
+// The tree of a torus grown greedily to `leaves` cells, its planes moved or not.
+std::vector<approximate::Leaf> torus_leaves(const TriangleMesh& mesh, const MeshDistance& distance,
+                                            int leaves, bool move_planes) {
+  using namespace approximate;
+  const Real size = mesh_size(mesh);
+  Leaf root;
+  root.part = whole_mesh_part(mesh, Vec3::Zero());
+  root.block = *hull_block(root.part.points, kWeld * radius_about_mean(root.part.points));
+  root.hull_volume = hull_volume(root.part.points);
+  const Real volume = root.part.volume;
+  const Context context{&distance, 2, kDistancePrecision * size, 1e-9 * volume, false};
+  root.distance = largest_outside_distance(distance, {root.block}, context.precision);
+  CutTree tree(std::move(root), context, leaves, kConcavityFraction * volume,
+               kDistanceGoal * size, 1e-9 * size, kSmallestMoveGain * volume);
+  tree.grow();
+  if (move_planes) {
+    EXPECT_TRUE(tree.refine_planes());
+  }
+  return tree.take_leaves();
+}
+
+// Moving the planes of a grown tree (CutTree::refine_planes) lowers the sum of its blocks'
+// volumes, and its parts still make up the solid exactly: no piece of the mesh is lost or
+// doubled, and the blocks are valid and apart.
+TEST(MeshApproxTree, MovingPlanesLowersTheHullsAndKeepsTheSolid) {
+  TriangleMesh mesh = testing_support::torus_mesh(1, 0.3, 48, 24);
+  const MeshDistance distance(mesh);
+  const Real size = mesh_size(mesh);
+  const Real volume = check_mesh(mesh).volume;
+  const auto grown = torus_leaves(mesh, distance, 8, false);
+  const auto moved = torus_leaves(mesh, distance, 8, true);
+  ASSERT_EQ(grown.size(), 8u);
+  ASSERT_EQ(moved.size(), 8u);
+  Real grown_hulls = 0, moved_hulls = 0, moved_parts = 0;
+  MeshDecomposition d;
+  for (const auto& leaf : grown) grown_hulls += leaf.hull_volume;
+  for (const auto& leaf : moved) {
+    moved_hulls += leaf.hull_volume;
+    moved_parts += leaf.part.volume;
+    d.blocks.push_back(leaf.block);
+  }
+  report("torus_8_over_coverage_grown_percent", 100 * (grown_hulls / volume - 1));
+  report("torus_8_over_coverage_moved_percent", 100 * (moved_hulls / volume - 1));
+  EXPECT_NEAR(moved_parts, volume, 1e-9 * volume);
+  EXPECT_LT(moved_hulls, grown_hulls - approximate::kSmallestMoveGain * volume);
+  expect_valid_and_disjoint(d, size);
+}
+
+}  // namespace tem::test_mesh_approximate

@@ -163,7 +163,7 @@ void tilt_best(const MeshPart& part, std::vector<Candidate>& candidates, const C
 }  // namespace
 
 Split split_into(Real hull, std::vector<Leaf> children) {
-  Split split{std::move(children), hull};
+  Split split{std::move(children), hull, std::nullopt, 0};
   for (const Leaf& child : split.children) split.gain -= child.hull_volume;
   return split;
 }
@@ -212,15 +212,24 @@ std::optional<Split> split(const Leaf& leaf, Context context) {
     chosen.tried = true;
     auto sides = cut_part(leaf.part, chosen.plane, true);
     std::vector<MeshPart> pieces;
-    for (const MeshPart& side : sides)
-      for (MeshPart& group : separate_groups(side, kSmallestSide * leaf.part.volume, gap))
+    int first_side_pieces = 0;
+    for (int s = 0; s < 2; ++s)
+      for (MeshPart& group : separate_groups(sides[s], kSmallestSide * leaf.part.volume, gap)) {
         pieces.push_back(std::move(group));
+        if (s == 0) ++first_side_pieces;
+      }
     auto children = pieces.size() <= static_cast<size_t>(context.room)
                         ? leaves_of(std::move(pieces), context)
                         : std::nullopt;
-    if (!children) children = leaves_of({std::move(sides[0]), std::move(sides[1])}, context);
+    if (!children) {
+      children = leaves_of({std::move(sides[0]), std::move(sides[1])}, context);
+      first_side_pieces = 1;
+    }
     if (!children) continue;
-    return split_into(leaf.hull_volume, std::move(*children));
+    Split result = split_into(leaf.hull_volume, std::move(*children));
+    result.plane = chosen.plane;
+    result.first_side_pieces = first_side_pieces;
+    return result;
   }
   return std::nullopt;
 }

@@ -27,6 +27,12 @@ inline constexpr Real kWeld = 1e-5;
 // the mesh is cut first, by the plane whose sides stray least (issue 21: 2 %, less a margin
 // for the sampled estimate that ranks the planes).
 inline constexpr Real kDistanceGoal = 0.015;
+// A plane of the tree is moved (CutTree::refine_planes) only where that lowers the sum of the
+// hulls' volumes by more than this fraction of the mesh's volume: smaller moves cost their time
+// and change the blocks by less than the last digit of the figures reported.
+inline constexpr Real kSmallestMoveGain = 1e-5;
+// The planes are first moved when the tree has this many leaves, then each time they double.
+inline constexpr int kFirstPlaneMoves = 8;
 // The Hausdorff distance is found to within this fraction of the mesh's bounding-box diagonal
 // (an eighth of issue 12's target of 2 %).
 inline constexpr Real kDistancePrecision = 2.5e-3;
@@ -46,6 +52,10 @@ struct Leaf {
 struct Split {
   std::vector<Leaf> children;
   Real gain = 0;
+  // The plane that made it, if one did; its first first_side_pieces children are the pieces of
+  // the side below the plane (the first side of cut_part), the rest those of the other side.
+  std::optional<CutPlane> plane;
+  int first_side_pieces = 0;
 };
 
 // The split of a leaf whose hull's volume is `hull` into these children.

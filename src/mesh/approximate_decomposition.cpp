@@ -1,5 +1,6 @@
 // The approximate cutter (issues 12 and 21), a greedy binary tree of cutting planes in the
-// manner of CoACD (Wei et al., 2022), with a one-cut look ahead in place of its tree search:
+// manner of CoACD (Wei et al., 2022), with a one-cut look ahead and a descent on the planes in
+// place of its tree search:
 //   - every part is the mesh's solid inside one cell of the tree (plane_cut.hpp) and its block
 //     is the convex hull of that part, so blocks lie in disjoint cells: they never overlap, and
 //     a hole stays open once cuts pass on both sides of it;
@@ -36,12 +37,18 @@
 //     kDistanceGoal that did not;
 //   - then the last cuts again: a node whose two children stay leaves is cut anew by the plane
 //     whose two hulls are least, without the look ahead (nothing is cut after it), and the
-//     improvement pass runs once more with every cut so chosen; both again while cells change.
+//     improvement pass runs once more with every cut so chosen; both again while cells change;
+//   - the planes moved (cut_tree_refine.cpp): each plane of the tree in turn, root first, is
+//     shifted or turned, every plane below it kept, while that lowers the sum of the hulls'
+//     volumes below it; a descent on the whole partition, which the greedy growth never
+//     revisits. It runs each time the growing tree's leaves double from 8, once the tree is
+//     grown, and after the last cuts, each time followed by the improvement pass.
 // Each candidate is scored on its own and the best taken in a fixed order, so the blocks are
 // the same, to the bit, with any number of threads.
 // Where: one part's candidates, scores and best cut in approximate_cuts.cpp (its look ahead in
-// approximate_lookahead.cpp), the tree's growth, improvement and last cuts in cut_tree.cpp, and
-// here the run from a mesh to its blocks and the figures reported.
+// approximate_lookahead.cpp), the tree's growth, improvement and last cuts in cut_tree.cpp, its
+// planes moved in cut_tree_refine.cpp, and here the run from a mesh to its blocks and the
+// figures reported.
 #include <algorithm>
 #include <chrono>
 #include <limits>
@@ -100,9 +107,20 @@ MeshDecomposition approximate_decomposition(const TriangleMesh& mesh, int max_bl
 
   const Real enough = kConcavityFraction * result.mesh_volume;
   CutTree tree(std::move(root), context, max_blocks, enough, kDistanceGoal * diagonal,
-               1e-9 * diagonal);
+               1e-9 * diagonal, kSmallestMoveGain * result.mesh_volume);
   tree.start_with_shells(kSmallestSide * result.mesh_volume);
+  // The planes are moved as the tree grows, each time its leaves double, so that the cuts that
+  // follow are chosen in cells that fit their parts (issue 21, the rocker arm at 64 blocks:
+  // 3.2 % against 3.6 % with the planes moved only once the tree was grown, as measured while
+  // this was built), and again when it is grown, before any merge fixes the planes above the
+  // merged blocks.
+  for (int leaves = kFirstPlaneMoves; leaves < max_blocks; leaves *= 2) {
+    tree.grow(leaves);
+    tree.refine_planes();
+  }
   tree.grow();
+  for (int pass = 0; pass < 2 && tree.refine_planes(); ++pass) {
+  }
   tree.improve();
   // The last cuts again, then the improvement pass with those cuts: a leaf cut now is seldom
   // cut again, so what a cut gains at once is what it should be weighed by against a merge.
@@ -115,6 +133,9 @@ MeshDecomposition approximate_decomposition(const TriangleMesh& mesh, int max_bl
     tree.improve();
     if (!recut) break;
   }
+  // The planes moved once more, with the cells the merges and last cuts left, and the
+  // improvement pass after each time they move.
+  for (int pass = 0; pass < 4 && tree.refine_planes(); ++pass) tree.improve();
   std::vector<Leaf> leaves = tree.take_leaves();
 
   Real left = 0;

@@ -12,13 +12,14 @@
 namespace tem::approximate {
 
 CutTree::CutTree(Leaf root, const Context& context, int max_blocks, Real enough,
-                 Real distance_goal, Real touching)
+                 Real distance_goal, Real touching, Real smallest_gain)
     : nodes_(1),
       context_(context),
       max_blocks_(max_blocks),
       enough_(enough),
       distance_goal_(distance_goal),
-      touching_(touching) {
+      touching_(touching),
+      smallest_gain_(smallest_gain) {
   nodes_[0].leaf = std::move(root);
 }
 
@@ -34,7 +35,12 @@ std::optional<Split>& CutTree::known_split(int n, int room) {
   return node.next;
 }
 
+void CutTree::touched(int n) {
+  for (; n >= 0; n = nodes_[n].parent) nodes_[n].moved_below = true;
+}
+
 void CutTree::apply(int n, Split cut) {
+  touched(n);
   for (Leaf& leaf : cut.children) {
     Node child;
     child.leaf = std::move(leaf);
@@ -43,6 +49,8 @@ void CutTree::apply(int n, Split cut) {
     nodes_.push_back(std::move(child));
   }
   leaf_count_ += static_cast<int>(nodes_[n].children.size()) - 1;
+  nodes_[n].plane = cut.plane;
+  nodes_[n].first_side_pieces = cut.first_side_pieces;
   nodes_[n].next.reset();
   nodes_[n].next_known = false;
 }
@@ -55,8 +63,9 @@ void CutTree::start_with_shells(Real smallest_volume) {
       apply(0, split_into(nodes_[0].leaf.hull_volume, std::move(*children)));
 }
 
-void CutTree::grow() {
-  while (leaf_count_ < max_blocks_) {
+void CutTree::grow(int up_to) {
+  if (up_to < 0) up_to = max_blocks_;
+  while (leaf_count_ < up_to) {
     const int room = max_blocks_ - leaf_count_ + 1;
     int worst = -1;
     for (size_t i = 0; i < nodes_.size(); ++i)
@@ -131,10 +140,12 @@ void CutTree::improve() {
     Real cost = std::numeric_limits<Real>::infinity();
     for (size_t i = 0; i < nodes_.size(); ++i) {
       const Node& node = nodes_[i];
-      if (!node.alive || node.children.empty() || node.leaf.distance > distance_goal_ ||
+      if (!node.alive || node.children.empty() ||
           !std::all_of(node.children.begin(), node.children.end(),
                        [&](int c) { return nodes_[c].is_leaf(); }))
         continue;
+      settle(static_cast<int>(i));
+      if (node.leaf.distance > distance_goal_) continue;
       Real c = node.leaf.hull_volume;
       for (int child : node.children) c -= nodes_[child].leaf.hull_volume;
       if (merge < 0 || c < cost) {
@@ -184,6 +195,8 @@ void CutTree::improve() {
     if (best < 0 || !(nodes_[best].next->gain > cost + context_.tie)) break;
     if (pair >= 0) {
       nodes_[pair_a].alive = nodes_[pair_b].alive = false;
+      touched(nodes_[pair_a].parent);
+      touched(nodes_[pair_b].parent);
       Node merged;
       merged.leaf = std::move(*pair_leaf);
       nodes_.push_back(std::move(merged));
@@ -196,8 +209,12 @@ void CutTree::improve() {
         nodes_[child].alive = false;
       }
       back.gain = cost;
+      back.plane = parent.plane;
+      back.first_side_pieces = parent.first_side_pieces;
       leaf_count_ -= static_cast<int>(parent.children.size()) - 1;
       parent.children.clear();
+      touched(merge);
+      parent.plane.reset();
       parent.next = std::move(back);
       parent.next_known = true;
     }
@@ -231,12 +248,15 @@ bool CutTree::recut_last_cuts() {
       new_strays = std::max(new_strays, child.distance);
     }
     if (!(new_hulls < hulls - context_.tie) || new_strays > strays) continue;
+    nodes_[i].plane = again->plane;
+    nodes_[i].first_side_pieces = again->first_side_pieces;
     for (int k = 0; k < 2; ++k) {
       Node& child = nodes_[node.children[k]];
       child.leaf = std::move(again->children[k]);
       child.next.reset();
       child.next_known = false;
     }
+    touched(static_cast<int>(i));
     recut = true;
   }
   if (recut) {  // the pairs' costs and verdicts were the old children's
