@@ -30,6 +30,12 @@ constexpr std::array<Real, 6> kTurns{0.5, 0.3, 0.16, 0.08, 0.04, 0.02};
 // The most moves of one plane in one pass: a plane still moving after them moves on in the
 // next pass, after the planes below it have had their turn.
 constexpr int kMovesPerPass = 30;
+// A plane whose part has more surface polygons than this stays where the growth put it: each
+// of its candidates cuts the part and the cells below it that it touches again. On the meshes
+// of 75,000 faces of bench_mesh.cpp, moving the planes of the first two levels too took the
+// cutter 116 s against 71 s (bumpy torus), 135 s against 82 s (trefoil knot) and 73 s against
+// 42 s (potato), for 1.41 %, 1.66 % and 0.38 % over-coverage against 1.42 %, 1.48 %, 0.39 %.
+constexpr size_t kLargestPartMoved = 20000;
 
 std::vector<CutPlane> moved_planes(const CutPlane& plane, const std::vector<Vec3>& points) {
   Real lo = std::numeric_limits<Real>::infinity(), hi = -lo;
@@ -232,7 +238,9 @@ bool CutTree::refine_planes() {
   bool moved = false;
   for (size_t n = 0; n < nodes_.size(); ++n) {  // a node's parent comes before it
     // A plane that found no move finds none again until something below it changes.
-    if (nodes_[n].children.empty() || !nodes_[n].moved_below || !plain_below(static_cast<int>(n)))
+    if (nodes_[n].children.empty() || !nodes_[n].moved_below ||
+        nodes_[n].leaf.part.polygon_start.size() > kLargestPartMoved + 1 ||
+        !plain_below(static_cast<int>(n)))
       continue;
     int move = 0;
     while (move < kMovesPerPass && move_plane(static_cast<int>(n))) ++move;
