@@ -119,8 +119,8 @@ MeshDecomposition approximate_decomposition(const TriangleMesh& mesh, int max_bl
     tree.refine_planes();
   }
   tree.grow();
-  for (int pass = 0; pass < 2 && tree.refine_planes(); ++pass) {
-  }
+  for (int pass = 0; pass < 2; ++pass)
+    if (!tree.refine_planes()) break;
   tree.improve();
   // The last cuts again, then the improvement pass with those cuts: a leaf cut now is seldom
   // cut again, so what a cut gains at once is what it should be weighed by against a merge.

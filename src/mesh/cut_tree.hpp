@@ -40,8 +40,10 @@ class CutTree {
   bool recut_last_cuts();
   // Moves the planes of the tree, root first, each shifted or turned with every plane below it
   // kept, while that lowers the sum of the hulls' volumes below it and strays no farther
-  // outside the mesh: the growth chose each plane for the cuts it foresaw, not for the ones
-  // that came. Planes above a block merged from two neighbours stay. True if some plane moved.
+  // outside the mesh (by the blocks' sampled distance): the growth chose each plane for the
+  // cuts it foresaw, not for the ones that came. Planes above a block merged from two
+  // neighbours stay, and so do those of the largest parts (cut_tree_refine.cpp). True if some
+  // plane moved.
   bool refine_planes();
   // The leaves, taken out of the tree.
   std::vector<Leaf> take_leaves();

@@ -6,6 +6,8 @@
 // volumes below it: a descent, one plane at a time, on the partition as a whole, which the
 // growth never revisits. Only the cells that a moved plane touches change: a cell cut anew
 // that holds the same part as before keeps its hull, and all below it, as they are.
+#include "mesh/cut_tree.hpp"
+
 #include <algorithm>
 #include <array>
 #include <limits>
@@ -14,7 +16,6 @@
 
 #include "geometry/aabb.hpp"
 #include "mesh/convex_overlap.hpp"
-#include "mesh/cut_tree.hpp"
 #include "mesh/hull_polyhedron.hpp"
 #include "mesh/part_components.hpp"
 #include "support/parallel.hpp"
