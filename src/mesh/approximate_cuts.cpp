@@ -240,6 +240,14 @@ Real merge_cost(const Leaf& a, const Leaf& b) {
   return hull_volume(both) - a.hull_volume - b.hull_volume;
 }
 
+bool reaches_into(const PolyhedronDef& block, const std::vector<const Leaf*>& others, Real eps) {
+  const Aabb box = Aabb::around(block.points);
+  return std::any_of(others.begin(), others.end(), [&](const Leaf* other) {
+    return box.within(Aabb::around(other->block.points), eps) &&
+           !convex_insides_apart(block, other->block, eps);
+  });
+}
+
 std::optional<Leaf> merged_leaf(const Leaf& a, const Leaf& b,
                                 const std::vector<const Leaf*>& others, Real distance_goal,
                                 Real eps, const Context& context) {
@@ -248,12 +256,7 @@ std::optional<Leaf> merged_leaf(const Leaf& a, const Leaf& b,
   part.points.insert(part.points.end(), b.part.points.begin(), b.part.points.end());
   part.volume = a.part.volume + b.part.volume;
   auto block = hull_block(part.points, kWeld * radius_about_mean(part.points));
-  if (!block) return std::nullopt;
-  const Aabb box = Aabb::around(block->points);
-  for (const Leaf* other : others)
-    if (box.within(Aabb::around(other->block.points), eps) &&
-        !convex_insides_apart(*block, other->block, eps))
-      return std::nullopt;
+  if (!block || reaches_into(*block, others, eps)) return std::nullopt;
   const Real distance = largest_outside_distance(*context.distance, {*block}, context.precision);
   if (distance > std::max({distance_goal, a.distance, b.distance})) return std::nullopt;
   Leaf leaf;

@@ -83,6 +83,9 @@ std::optional<Split> split(const Leaf& leaf, Context context);
 // What the hull of two leaves' blocks together adds over their own hulls.
 Real merge_cost(const Leaf& a, const Leaf& b);
 
+// Whether the block reaches into one of the others' blocks (touching within eps is apart).
+bool reaches_into(const PolyhedronDef& block, const std::vector<const Leaf*>& others, Real eps);
+
 // The leaf of a and b merged, if its hull makes a valid block that reaches into none of
 // `others` (blocks never overlap) and strays no farther outside the mesh than the goal or the
 // worse of the two did. Its part keeps only the corners, which is all a hull needs: a merged

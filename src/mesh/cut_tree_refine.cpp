@@ -14,8 +14,6 @@
 
 #include <Eigen/Geometry>
 
-#include "geometry/aabb.hpp"
-#include "mesh/convex_overlap.hpp"
 #include "mesh/hull_polyhedron.hpp"
 #include "mesh/part_components.hpp"
 #include "support/parallel.hpp"
@@ -170,17 +168,15 @@ void CutTree::settle(int n) {
   Node& node = nodes_[n];
   if (!node.unsettled) return;
   node.unsettled = false;
-  if (node.children.empty()) {
-    node.leaf.distance =
-        largest_outside_distance(*context_.distance, {node.leaf.block}, context_.precision);
-    return;
+  if (!node.children.empty()) {  // a leaf's block was made with its part (rebuilt_below)
+    auto block =
+        hull_block(node.leaf.part.points, kWeld * radius_about_mean(node.leaf.part.points));
+    if (!block) {  // cannot be a block again: never merged back
+      node.leaf.distance = std::numeric_limits<Real>::infinity();
+      return;
+    }
+    node.leaf.block = std::move(*block);
   }
-  auto block = hull_block(node.leaf.part.points, kWeld * radius_about_mean(node.leaf.part.points));
-  if (!block) {  // cannot be a block again: never merged back
-    node.leaf.distance = std::numeric_limits<Real>::infinity();
-    return;
-  }
-  node.leaf.block = std::move(*block);
   node.leaf.distance =
       largest_outside_distance(*context_.distance, {node.leaf.block}, context_.precision);
 }
@@ -204,22 +200,19 @@ bool CutTree::move_plane(int n) {
   for (size_t c = 0; c < planes.size(); ++c)
     if (sums[c] < hulls - smallest_gain_) order.push_back(static_cast<int>(c));
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return sums[a] < sums[b]; });
+  // A merged block reaches outside its cells, so a moved cell's block may not reach into one
+  // (blocks never overlap).
+  std::vector<const Leaf*> merged;
+  for (const Node& other : nodes_)
+    if (other.is_leaf() && other.leaf.merged) merged.push_back(&other.leaf);
   for (int c : order) {
     auto rebuilt = rebuilt_below(n, part, planes[c]);
     if (!rebuilt) continue;
-    bool fits = true;
-    for (const auto& [k, leaf] : *rebuilt) {
-      if (!nodes_[k].children.empty()) continue;
-      fits &= !(leaf.distance > strays);
-      // A merged block reaches outside its cells, so a moved cell's block may not reach into
-      // one (blocks never overlap).
-      const Aabb box = Aabb::around(leaf.block.points);
-      for (const Node& other : nodes_)
-        if (fits && other.is_leaf() && other.leaf.merged &&
-            box.within(Aabb::around(other.leaf.block.points), touching_) &&
-            !convex_insides_apart(leaf.block, other.leaf.block, touching_))
-          fits = false;
-    }
+    const bool fits = std::all_of(rebuilt->begin(), rebuilt->end(), [&](const auto& entry) {
+      const auto& [k, leaf] = entry;
+      return !nodes_[k].children.empty() ||
+             (!(leaf.distance > strays) && !reaches_into(leaf.block, merged, touching_));
+    });
     if (!fits) continue;
     for (auto& [k, leaf] : *rebuilt) {
       Node& node = nodes_[k];
