@@ -74,17 +74,7 @@ TEST(ConjugateGradients, ColumnOfFortyCoinsInFarFewerSweeps) {
 // of 12 x 12 columns of three coins (432 patches with the floor), so that each colour holds
 // more than the 64 patches under which a colour is swept on one thread.
 TEST(ConjugateGradients, SameBitsAtAnyThreadCount) {
-  const SceneDef column = coin_column(3, 5e-4);
-  SceneDef scene = column;
-  scene.walls.assign(1, column.walls[0]);  // the floor
-  scene.bodies.clear();
-  for (int i = 0; i < 12; ++i)
-    for (int j = 0; j < 12; ++j)
-      for (BodyDef coin : column.bodies) {
-        coin.name += "_" + std::to_string(i) + "_" + std::to_string(j);
-        coin.position += Vec3(0.4 * i, 0.4 * j, 0);
-        scene.bodies.push_back(coin);
-      }
+  SceneDef scene = testing_support::coin_lattice(12, 3, 5e-4);
   scene.contact.conjugate_gradients = true;
   scene.contact.colour_sweeps = true;
   scene.contact.tolerance = 1e-9;  // every step's sweeps run on, with the direction's moves

@@ -1,6 +1,7 @@
 // Physics of the default mode against closed forms: a box at rest, sliding and sticking on an
 // incline, bouncing with a restitution; the energy of every contact scene never rises. Every
-// number comes from the run; the expectations are textbook formulas.
+// number comes from the run; the expectations are textbook formulas. Each test runs with both
+// SEMM solvers (contact.solver "rows" and "newton"): the same closed forms hold for either.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,8 +18,9 @@ using testing_support::simulate;
 constexpr Real kG = earth_gravity_cgs;
 
 // A 0.2 x 0.2 x 0.1 box (density 1) on the floor plane z = 0, bottom face at z = lift.
-SceneDef box_on_floor(Real lift, Real friction, Real restitution, Real dt) {
+SceneDef box_on_floor(Real lift, Real friction, Real restitution, Real dt, ContactSolver solver) {
   SceneDef scene = testing_support::box_on_floor(lift);
+  scene.contact.solver = solver;
   scene.time_step = dt;
   scene.contact.friction = friction;
   scene.contact.restitution = restitution;
@@ -32,12 +34,14 @@ Real rotation_angle(const Mat3& g) {
   return Eigen::AngleAxis<Real>(Mat3(g)).angle();
 }
 
+class Physics : public ::testing::TestWithParam<ContactSolver> {};
+
 // A box set down on the floor stays: it sinks by what one step of free fall takes before its
 // contact is found (half g dt^2 in that step, as much in the next while the contact stops it:
 // g dt^2 in all, to round-off), and neither drifts nor turns, for 2 s.
-TEST(Physics, BoxRestsOnTheFloor) {
+TEST_P(Physics, BoxRestsOnTheFloor) {
   const Real dt = 1e-4;
-  const Model model = build_model(box_on_floor(0, 0.3, 0, dt));
+  const Model model = build_model(box_on_floor(0, 0.3, 0, dt, GetParam()));
   State state = initial_state(model);
   const Vec3 x0 = state.bodies[0].x;
   Real sink = 0, drift = 0, turn = 0;
@@ -67,9 +71,9 @@ struct InclineResult {
   Real scale = 0;
 };
 
-InclineResult incline(Real friction) {
+InclineResult incline(Real friction, ContactSolver solver) {
   const Real theta = std::atan(0.5);
-  SceneDef scene = box_on_floor(0, friction, 0, 1e-4);
+  SceneDef scene = box_on_floor(0, friction, 0, 1e-4, solver);
   scene.gravity = kG * Vec3(std::sin(theta), 0, -std::cos(theta));
   const Model model = build_model(scene);
   State state = initial_state(model);
@@ -86,9 +90,9 @@ InclineResult incline(Real friction) {
   return r;
 }
 
-TEST(Physics, InclineSlidesWithCoulombFriction) {
+TEST_P(Physics, InclineSlidesWithCoulombFriction) {
   const Real theta = std::atan(0.5);
-  const InclineResult r = incline(0.49);
+  const InclineResult r = incline(0.49, GetParam());
   const Real expected = kG * (std::sin(theta) - 0.49 * std::cos(theta));
   report("incline mu 0.49: acceleration / g (sin - mu cos)", r.acceleration / expected);
   EXPECT_NEAR(r.acceleration / expected, 1, 0.02);
@@ -99,18 +103,18 @@ TEST(Physics, InclineSlidesWithCoulombFriction) {
 // the step after, while friction stops it: g sin(theta) dt^2 (as the box at rest sinks g dt^2);
 // then it holds, but for round-off creep (the friction it needs is exactly its limit), asked to
 // stay below 1e-10 cm, a billionth of the box, over the 5000 steps.
-TEST(Physics, InclineHoldsAtTheFrictionAngle) {
+TEST_P(Physics, InclineHoldsAtTheFrictionAngle) {
   const Real theta = std::atan(0.5), dt = 1e-4;
-  const InclineResult r = incline(0.5);
+  const InclineResult r = incline(0.5, GetParam());
   report("incline mu 0.5: travel in 0.5 s (cm)", r.travel);
   report("incline mu 0.5: travel beyond g sin dt^2 (cm)", r.travel - kG * std::sin(theta) * dt * dt);
   EXPECT_LE(std::abs(r.travel), kG * std::sin(theta) * dt * dt + 1e-10);
   EXPECT_LE(r.energy_rise, 1e-12 * r.scale);
 }
 
-TEST(Physics, InclineWithoutFrictionSlidesFreely) {
+TEST_P(Physics, InclineWithoutFrictionSlidesFreely) {
   const Real theta = std::atan(0.5);
-  const InclineResult r = incline(0);
+  const InclineResult r = incline(0, GetParam());
   report("incline frictionless: acceleration / (g sin)", r.acceleration / (kG * std::sin(theta)));
   EXPECT_NEAR(r.acceleration / (kG * std::sin(theta)), 1, 0.01);
   EXPECT_LE(r.energy_rise, 1e-12 * r.scale);
@@ -118,9 +122,9 @@ TEST(Physics, InclineWithoutFrictionSlidesFreely) {
 
 // Dropped flat from 0.1 cm, with restitution 0.5 the box leaves the floor at half the speed
 // it hit it with.
-TEST(Physics, BoxReboundsWithItsRestitution) {
+TEST_P(Physics, BoxReboundsWithItsRestitution) {
   const Real drop = 0.1;
-  const Model model = build_model(box_on_floor(drop, 0.3, 0.5, 1e-5));
+  const Model model = build_model(box_on_floor(drop, 0.3, 0.5, 1e-5, GetParam()));
   State state = initial_state(model);
   Real impact = 0, rebound = 0;
   bool touched = false;
@@ -135,6 +139,12 @@ TEST(Physics, BoxReboundsWithItsRestitution) {
   EXPECT_NEAR(-impact, std::sqrt(2 * kG * drop), 0.01 * std::sqrt(2 * kG * drop));
   EXPECT_NEAR(rebound / -impact, 0.5, 0.03);
 }
+
+INSTANTIATE_TEST_SUITE_P(Solvers, Physics,
+                         ::testing::Values(ContactSolver::rows, ContactSolver::newton),
+                         [](const ::testing::TestParamInfo<ContactSolver>& info) {
+                           return info.param == ContactSolver::rows ? "rows" : "newton";
+                         });
 
 }  // namespace test_physics
 }  // namespace tem

@@ -33,20 +33,28 @@ void print_summary(const Model& model, const State& state, const Workspace& w, d
                "tem run: %lld steps to t = %.6g s in %.3f s (%.0f steps/s, %.2f us/step)\n"
                "  per step: broad phase %.2f us, narrow phase + patches %.2f us, forces %.2f us, "
                "integration %.2f us\n"
-               "  contact solver: %.2f sweeps per step on average, %d at most, %lld steps "
+               "  contact solver: %.2f %s per step on average, %d at most, %lld steps "
                "unconverged, %lld scaled to add no energy\n"
                "  contacts: %.1f patches and %.1f points per step on average, %.2f us per patch "
                "(all stages)\n"
                "  final energy: kinetic %.9g, potential %.9g, total %.9g\n",
                t.steps, state.time, wall, t.steps / std::max(wall, 1e-9), 1e6 * wall / steps,
                1e6 * t.broad_phase / steps, 1e6 * t.narrow_phase / steps, 1e6 * t.forces / steps,
-               1e6 * t.integrate / steps, static_cast<double>(t.sweeps) / steps, t.max_sweeps,
+               1e6 * t.integrate / steps, static_cast<double>(t.sweeps) / steps,
+               model.scene.contact.solver == ContactSolver::newton ? "Newton iterations"
+                                                                   : "sweeps",
+               t.max_sweeps,
                t.unconverged_steps, t.scaled_steps, t.patches / steps, t.points / steps,
                t.patches > 0 ? 1e6 * wall / static_cast<double>(t.patches) : 0.0, e.kinetic,
                e.potential, e.total());
   if (model.scene.contact.max_substeps > model.scene.contact.substeps)
     std::fprintf(stderr, "  sub-steps: %.2f per step on average, %d at most\n",
                  static_cast<double>(t.substeps) / steps, t.max_substeps);
+  if (t.fallback_islands > 0)
+    std::fprintf(stderr,
+                 "  Newton: %lld islands not converged in %d iterations were solved by the row "
+                 "solver instead\n",
+                 t.fallback_islands, kMaxNewtonIterations);
   if (t.corrected_steps > 0)
     std::fprintf(stderr, "  overlap correction: bodies moved apart in %lld of %lld steps\n",
                  t.corrected_steps, t.steps);

@@ -34,7 +34,7 @@ enum class PatchNormals { paper, faces };
 enum class PatchPoints { one, corners };
 // The default SEMM's solver: one scalar row per contact point (fast; the default), or each
 // patch's normal impulses solved together as one block (Lawson-Hanson; before issue 11).
-enum class ContactSolver { rows, blocks };
+enum class ContactSolver { rows, blocks, newton };
 // The penalty model's normal law: F = k d (linear) or F = k d^(3/2) (Hertz).
 enum class PenaltyLaw { linear, hertz };
 

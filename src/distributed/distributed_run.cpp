@@ -56,8 +56,9 @@ std::string unsupported_reason(const SceneDef& scene) {
            "contact.model 'semm-paper' (the paper's direct solve) is not distributed: run this "
            "scene without mpirun (threads: --threads N)";
   if (scene.contact.model == ContactModel::semm && scene.contact.solver != ContactSolver::rows)
-    return "over MPI ranks SEMM runs with contact.solver 'rows' (the default); 'blocks' is not "
-           "distributed: run this scene without mpirun, or with the rows solver";
+    return std::string("over MPI ranks SEMM runs with contact.solver 'rows' (the default); '") +
+           (scene.contact.solver == ContactSolver::blocks ? "blocks" : "newton") +
+           "' is not distributed: run this scene without mpirun, or with the rows solver";
   // Each sub-step's solve would need the ghosts' forces returned between the sub-steps.
   if (scene.contact.substeps > 1 || scene.contact.max_substeps > 1)
     return "over MPI ranks TEM does not yet run sub-steps (contact.substeps or "

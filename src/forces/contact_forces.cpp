@@ -145,6 +145,10 @@ void compute_contact_forces(const Model& model, const State& state,
       normal_targets(f.points, f.approach, f.approach_linear, settings, f.targets, &f.friction);
       f.solver = solve_semm_rows(f.points, f.approach, f.targets, f.responses, f.centres, settings,
                                  f.friction, f.impulses, f.rows);
+    } else if (scene.contact.solver == ContactSolver::newton) {
+      normal_targets(f.points, f.approach, f.approach_linear, settings, f.targets, &f.friction);
+      f.solver = solve_semm_newton(f.points, f.approach, f.targets, f.responses, f.centres,
+                                   settings, f.friction, f.impulses, f.newton);
     } else {
       f.solver = solve_semm(f.points, f.approach, f.responses, f.centres, settings, f.friction,
                             f.impulses);

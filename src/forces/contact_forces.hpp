@@ -11,6 +11,7 @@
 #include "forces/penalty.hpp"
 #include "forces/semm.hpp"
 #include "forces/semm_rows.hpp"
+#include "forces/semm_newton/semm_newton.hpp"
 #include "world/model.hpp"
 
 namespace tem {
@@ -31,6 +32,7 @@ struct ContactForces {
   std::vector<Real> targets;   // normal relative velocity each point asks for after the step
   std::vector<PatchFriction> friction;  // one per patch (default SEMM)
   RowSolverMemory rows;                 // the scalar-row solver's memory
+  NewtonSolverMemory newton;            // the Newton solver's memory
   // The overlap correction's working vectors (overlap_correction.cpp), kept between steps.
   struct Correction {
     std::vector<Real> targets;

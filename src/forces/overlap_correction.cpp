@@ -50,8 +50,9 @@ CorrectionReport correct_overlap(const Model& model, ContactForces& f, Real dt,
   stopping.colour_sweeps = model.scene.contact.colour_sweeps;
   stopping.sync = sync;
   stopping.held = &held;
-  // The scalar-row solver where the step used it (its memory is free again by now).
-  RowSolverMemory* rows = model.scene.contact.solver == ContactSolver::rows ? &f.rows : nullptr;
+  // The scalar-row solver where the step used it or Newton (its memory is free by now), the
+  // block solver where the step used that.
+  RowSolverMemory* rows = model.scene.contact.solver != ContactSolver::blocks ? &f.rows : nullptr;
   f.correction.patches = f.friction;
   solve_separation(f.points, targets, still, f.centres, f.correction.patches,
                    f.correction.impulses, moved, stopping, rows);

@@ -101,6 +101,7 @@ struct SolverReport {
   Real change = 0;      // largest impulse change of the last sweep, relative to the largest
   bool converged = true;
   Real scale = 1;       // < 1: impulses scaled down so as to add no energy (semm_rows.hpp)
+  int fallback_islands = 0;  // Newton: islands it did not converge, solved by the rows solver
 };
 
 // A patch's friction coefficient, restitution, and rolling torque limit per unit normal impulse

@@ -318,7 +318,9 @@ class SceneReader {
     if (const Json* v = Reader::get(j, "solver")) {
       if (auto solver = r_.choice<ContactSolver>(
               *v, child(path, "solver"),
-              {{"rows", ContactSolver::rows}, {"blocks", ContactSolver::blocks}})) {
+              {{"rows", ContactSolver::rows},
+               {"blocks", ContactSolver::blocks},
+               {"newton", ContactSolver::newton}})) {
         contact->solver = *solver;
       }
     }

@@ -313,7 +313,9 @@ Json scene_to_json(const SceneDef& scene) {
                       {"max_sweeps", scene.contact.max_sweeps},
                       {"substeps", scene.contact.substeps},
                       {"sweep_order", scene.contact.colour_sweeps ? "colours" : "patches"},
-                      {"solver", scene.contact.solver == ContactSolver::blocks ? "blocks" : "rows"}};
+                      {"solver", scene.contact.solver == ContactSolver::blocks   ? "blocks"
+                                 : scene.contact.solver == ContactSolver::newton ? "newton"
+                                                                                 : "rows"}};
   if (scene.contact.margin)
     j["contact"]["margin"] = *scene.contact.margin;
   else

@@ -115,10 +115,10 @@ Body build_body(const BodyDef& def, Model& model, Real scale) {
       throw SceneError(def.path + ".motion.surface_velocity",
                        "a sliding surface moves bodies by friction, which contact.model "
                        "\"semm-paper\" does not have; use \"semm\" or \"penalty\"");
-    if (c.model == ContactModel::semm && c.solver != ContactSolver::rows)
+    if (c.model == ContactModel::semm && c.solver == ContactSolver::blocks)
       throw SceneError(def.path + ".motion.surface_velocity",
-                       "a sliding surface is solved by contact.solver \"rows\" (the default), "
-                       "not \"blocks\"");
+                       "a sliding surface is solved by contact.solver \"rows\" (the default) or "
+                       "\"newton\", not \"blocks\"");
   }
   if (def.removed_at) body.removed_at = *def.removed_at;
 

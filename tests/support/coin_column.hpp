@@ -44,4 +44,21 @@ inline SceneDef coin_column(int layers, Real dt) {
   return scene;
 }
 
+// A lattice of `side` x `side` columns of `layers` coins, 0.4 cm apart, on a floor without
+// side walls: many islands at once (thread-count checks).
+inline SceneDef coin_lattice(int side, int layers, Real dt) {
+  const SceneDef column = coin_column(layers, dt);
+  SceneDef scene = column;
+  scene.walls.assign(1, column.walls[0]);  // the floor
+  scene.bodies.clear();
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j)
+      for (BodyDef coin : column.bodies) {
+        coin.name += "_" + std::to_string(i) + "_" + std::to_string(j);
+        coin.position += Vec3(0.4 * i, 0.4 * j, 0);
+        scene.bodies.push_back(coin);
+      }
+  return scene;
+}
+
 }  // namespace tem::testing_support

@@ -1,0 +1,67 @@
+// The constraint rows of SEMM by Newton (semm_newton.hpp), in the primal form: each row reads
+// a relative velocity u = J y (+ what sides that are not unknowns contribute) of the bodies'
+// pseudo velocities y, and adds to the objective a convex term phi(u) whose negative gradient
+// is the row's impulse gamma(u) and whose (generalised) Hessian G(u) is positive semi-definite.
+//
+// Four kinds, as the row solver has them (semm_rows.hpp):
+// - normal, one per contact point: gamma = max(0, (target - u) / R), phi = R gamma^2 / 2. In
+//   the limit R -> 0 this is the constraint u >= target with a normal impulse >= 0.
+// - slip (2-D, at the patch centre), twist (1-D, about the normal) and rolling (2-D, angular
+//   about the tangents): a disc of radius r, the friction limit. gamma = -u / R inside the
+//   disc's stick zone |u| <= r R, else -r u / |u| (Coulomb: the most the limit allows, against
+//   the slip); phi is the matching Huber function.
+//
+// R is a regularisation of 1e-6 of the row's own Delassus diagonal w = J W J^T (kRegularisation):
+// small enough that the velocity error it leaves (R gamma, a millionth of the velocity change the
+// row makes) is far below anything a test or a user could see, large enough that the Hessian
+// stays positive definite and well conditioned for a direct factorisation.
+#pragma once
+
+#include <Eigen/Dense>
+#include <cstdint>
+
+#include "world/model.hpp"
+
+namespace tem::newton {
+
+using Vec2 = Eigen::Matrix<Real, 2, 1>;
+using Mat2 = Eigen::Matrix<Real, 2, 2>;
+using Vec6 = Eigen::Matrix<Real, 6, 1>;
+using Mat6 = Eigen::Matrix<Real, 6, 6>;
+using Jacobian = Eigen::Matrix<Real, 2, 6>;  // rows beyond the row's dimension are zero
+
+inline constexpr Real kRegularisation = 1e-6;
+
+struct Row {
+  enum class Kind : std::uint8_t { normal, slip, twist, rolling };
+  Kind kind = Kind::normal;
+  int dim = 1;                      // 1 or 2
+  int side[2] = {-1, -1};           // island-local body of A and B, or -1 (not an unknown)
+  int pair = -1;                    // with both sides unknowns: their pair's Hessian block
+  Jacobian jacobian[2] = {Jacobian::Zero(), Jacobian::Zero()};  // d u / d y of each side
+  Vec2 constant = Vec2::Zero();     // u's part from bodies that are not unknowns, surface slip
+  Real target = 0;                  // normal rows: the least u
+  Real regularisation = 0;          // R
+  Real radius = 0;                  // disc rows: the friction limit r (set by the solver)
+  int patch = 0;                    // the contact patch of the row
+  int point = -1;                   // normal rows: the contact point
+  Real lever = 0;                   // normal rows: the point's distance from the patch centre
+  Vec2 start = Vec2::Zero();        // u at the start of the step (the energy rule)
+  // Disc rows: whether the row asks for its start velocity mirrored instead of none (its
+  // constant then holds + start): semm_newton.cpp, the energy rule of friction.
+  bool mirrored = false;
+};
+
+// The impulse gamma(u) of a row and its generalised Hessian G(u) (dim x dim, top left of a 2x2).
+// `at_kink_active`: a normal row exactly at (or within `band` of) its target counts as pushing
+// in G (semismooth Newton may pick either branch there; picking "pushing" lets one Newton step
+// carry a resting column's weight to the floor instead of one layer per iteration).
+struct RowResponse {
+  Vec2 impulse = Vec2::Zero();
+  Mat2 curvature = Mat2::Zero();
+  Real value = 0;  // phi(u)
+};
+// `band` < 0: the exact G (0 at the kink).
+RowResponse respond(const Row& row, const Vec2& u, Real band = -1);
+
+}  // namespace tem::newton

@@ -1,0 +1,662 @@
+#include "forces/semm_newton/semm_newton.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "support/parallel.hpp"
+
+namespace tem {
+namespace {
+
+using newton::Jacobian;
+using newton::Mat2;
+using newton::Mat6;
+using newton::Row;
+using newton::RowResponse;
+using newton::Vec2;
+using newton::Vec6;
+using Island = NewtonSolverMemory::Island;
+using Vector = Eigen::VectorXd;
+
+bool is_unknown(const std::vector<BodyResponse>& bodies, int b) {
+  return b >= 0 && bodies[b].inverse_mass > 0 && !bodies[b].driven;
+}
+
+int root_of(std::vector<int>& parent, int x) {
+  while (parent[x] != x) {
+    parent[x] = parent[parent[x]];
+    x = parent[x];
+  }
+  return x;
+}
+
+// Islands: bodies joined by patches both of whose sides are unknowns, in the order of their
+// first patch; a body touching only walls, fixed or driven bodies is an island of its own.
+void find_islands(const std::vector<PatchFriction>& patches,
+                  const std::vector<BodyResponse>& bodies, NewtonSolverMemory& m) {
+  const int n = static_cast<int>(bodies.size());
+  m.parent.resize(n);
+  std::iota(m.parent.begin(), m.parent.end(), 0);
+  for (const PatchFriction& p : patches) {
+    if (p.last == p.first || !is_unknown(bodies, p.body_a) || !is_unknown(bodies, p.body_b))
+      continue;
+    const int a = root_of(m.parent, p.body_a), b = root_of(m.parent, p.body_b);
+    if (a != b) m.parent[std::max(a, b)] = std::min(a, b);
+  }
+  m.island_of_body.assign(n, -1);  // indexed by root while patches are assigned
+  int count = 0;
+  std::vector<int> island_patches;
+  for (size_t k = 0; k < patches.size(); ++k) {
+    const PatchFriction& p = patches[k];
+    if (p.last == p.first) continue;
+    const int body = is_unknown(bodies, p.body_a)   ? p.body_a
+                     : is_unknown(bodies, p.body_b) ? p.body_b
+                                                    : -1;
+    if (body < 0) continue;  // between bodies that do not move in answer: nothing to solve
+    int& island = m.island_of_body[root_of(m.parent, body)];
+    if (island < 0) {
+      island = count++;
+      if (static_cast<int>(m.islands.size()) < count) m.islands.emplace_back();
+      m.islands[island].bodies.clear();
+      m.islands[island].patches.clear();
+    }
+    m.islands[island].patches.push_back(static_cast<int>(k));
+  }
+  m.islands.resize(static_cast<size_t>(count));
+  m.local_of_body.assign(n, -1);
+  for (int b = 0; b < n; ++b) {
+    if (!is_unknown(bodies, b)) continue;
+    const int island = m.island_of_body[root_of(m.parent, b)];
+    if (island < 0) continue;
+    m.local_of_body[b] = static_cast<int>(m.islands[island].bodies.size());
+    m.islands[island].bodies.push_back(b);
+  }
+}
+
+// The pieces of one island's problem besides its rows.
+struct IslandProblem {
+  std::vector<Mat6> metric;  // M per body: diag(mass, Q^-1)
+  Vector free;               // y_free
+  std::vector<std::pair<int, int>> pairs;
+  // Per patch of the island: its rows [first, first + normals) are normal, then slip, twist,
+  // rolling rows (-1: none), and its limits per unit normal impulse.
+  struct PatchRows {
+    int patch = 0, first = 0, normals = 0, slip = -1, twist = -1, rolling = -1;
+    Real mu = 0, rolling_limit = 0;
+  };
+  std::vector<PatchRows> patch_rows;
+};
+
+// One direction of a row on one side: a linear part (along which the side's centre velocity
+// is read) and an angular part (along which its pseudo angular velocity is). An unknown body
+// fills the Jacobian; a driven body adds its own velocity to the row's constant; walls and fixed
+// bodies stand still.
+struct RowBuilder {
+  const std::vector<BodyResponse>& bodies;
+  const std::vector<int>& local;
+
+  void add(Row& row, int component, int s, int body, const Vec3& linear,
+           const Vec3& angular) const {
+    if (body < 0) return;
+    if (local[body] >= 0) {
+      row.side[s] = local[body];
+      row.jacobian[s].block<1, 3>(component, 0) = linear.transpose();
+      row.jacobian[s].block<1, 3>(component, 3) = angular.transpose();
+    } else if (bodies[body].driven) {
+      row.constant(component) +=
+          linear.dot(bodies[body].velocity) + angular.dot(bodies[body].angular_velocity);
+    }
+  }
+  // R = kRegularisation times the row's Delassus diagonal (the mean over its components).
+  void regularise(Row& row, const std::vector<int>& island_bodies) const {
+    Real w = 0;
+    for (int s = 0; s < 2; ++s) {
+      if (row.side[s] < 0) continue;
+      const BodyResponse& b = bodies[island_bodies[row.side[s]]];
+      for (int c = 0; c < row.dim; ++c) {
+        const Vec3 l = row.jacobian[s].block<1, 3>(c, 0).transpose();
+        const Vec3 a = row.jacobian[s].block<1, 3>(c, 3).transpose();
+        w += b.inverse_mass * l.squaredNorm() + a.dot(b.angular * a);
+      }
+    }
+    row.regularisation = newton::kRegularisation * std::max<Real>(w / row.dim, 1e-300);
+  }
+};
+
+void build_island(const std::vector<ContactPoint>& points, const std::vector<Real>& start,
+                  const std::vector<Real>& targets,
+                  const std::vector<BodyResponse>& bodies, const std::vector<Vec3>& centres,
+                  const SolverSettings& settings, const std::vector<PatchFriction>& patches,
+                  const std::vector<int>& local, Island& island, IslandProblem& problem) {
+  const size_t nb = island.bodies.size();
+  problem.metric.resize(nb);
+  problem.free.resize(static_cast<Eigen::Index>(6 * nb));
+  for (size_t k = 0; k < nb; ++k) {
+    const BodyResponse& b = bodies[island.bodies[k]];
+    Mat6& m = problem.metric[k];
+    m.setZero();
+    m.topLeftCorner<3, 3>().diagonal().setConstant(1 / b.inverse_mass);
+    m.bottomRightCorner<3, 3>() = b.angular.inverse();
+    problem.free.segment<3>(static_cast<Eigen::Index>(6 * k)) = b.velocity;
+    problem.free.segment<3>(static_cast<Eigen::Index>(6 * k + 3)) = b.angular_velocity;
+  }
+  const RowBuilder builder{bodies, local};
+  auto arm = [&](int body, const Vec3& p) {
+    return body >= 0 ? Vec3(p - centres[body]) : Vec3::Zero();
+  };
+  island.rows.clear();
+  problem.patch_rows.clear();
+  problem.pairs.clear();
+  for (const int k : island.patches) {
+    const PatchFriction& p = patches[k];
+    IslandProblem::PatchRows pr;
+    pr.patch = k;
+    pr.first = static_cast<int>(island.rows.size());
+    pr.normals = p.last - p.first;
+    pr.mu = friction_of(settings, p);
+    pr.rolling_limit = rolling_limit_of(settings, p);
+    // Normal rows: u = n . (v_B(point) - v_A(point)) >= target.
+    for (int i = p.first; i < p.last; ++i) {
+      const ContactPoint& c = points[i];
+      Row row;
+      row.kind = Row::Kind::normal;
+      row.dim = 1;
+      row.patch = k;
+      row.point = i;
+      row.target = targets[i];
+      row.lever = (c.point - p.centre).norm();
+      row.start.x() = start[i];
+      builder.add(row, 0, 0, c.body_a, -c.normal, -arm(c.body_a, c.point).cross(c.normal));
+      builder.add(row, 0, 1, c.body_b, c.normal, arm(c.body_b, c.point).cross(c.normal));
+      island.rows.push_back(row);
+    }
+    if (pr.mu > 0) {
+      Row slip;  // (t1, t2) . (v_B - v_A) at the centre, plus the sliding surfaces' slip
+      slip.kind = Row::Kind::slip;
+      slip.dim = 2;
+      slip.patch = k;
+      slip.constant = p.surface_slip.head<2>();
+      slip.start = p.start_slip.head<2>();
+      const Vec3 ra = arm(p.body_a, p.centre), rb = arm(p.body_b, p.centre);
+      const Vec3 tangents[2] = {p.tangent1, p.tangent2};
+      for (int c = 0; c < 2; ++c) {
+        builder.add(slip, c, 0, p.body_a, -tangents[c], -ra.cross(tangents[c]));
+        builder.add(slip, c, 1, p.body_b, tangents[c], rb.cross(tangents[c]));
+      }
+      pr.slip = static_cast<int>(island.rows.size());
+      island.rows.push_back(slip);
+      Row twist;  // n . (w_B - w_A)
+      twist.kind = Row::Kind::twist;
+      twist.dim = 1;
+      twist.patch = k;
+      twist.constant.x() = p.surface_slip.z();
+      twist.start.x() = p.start_slip.z();
+      builder.add(twist, 0, 0, p.body_a, Vec3::Zero(), -p.normal);
+      builder.add(twist, 0, 1, p.body_b, Vec3::Zero(), p.normal);
+      if (twist.side[0] >= 0 || twist.side[1] >= 0) {
+        pr.twist = static_cast<int>(island.rows.size());
+        island.rows.push_back(twist);
+      }
+    }
+    if (pr.rolling_limit > 0) {
+      Row roll;  // (t1, t2) . (w_B - w_A)
+      roll.kind = Row::Kind::rolling;
+      roll.dim = 2;
+      roll.patch = k;
+      roll.start = Vec2(p.start_roll1, p.start_roll2);
+      const Vec3 tangents[2] = {p.tangent1, p.tangent2};
+      for (int c = 0; c < 2; ++c) {
+        builder.add(roll, c, 0, p.body_a, Vec3::Zero(), -tangents[c]);
+        builder.add(roll, c, 1, p.body_b, Vec3::Zero(), tangents[c]);
+      }
+      pr.rolling = static_cast<int>(island.rows.size());
+      island.rows.push_back(roll);
+    }
+    problem.patch_rows.push_back(pr);
+  }
+  // Regularisation, and the Hessian's off-diagonal blocks: one per pair of unknowns a row joins.
+  for (Row& row : island.rows) {
+    builder.regularise(row, island.bodies);
+    if (row.side[0] >= 0 && row.side[1] >= 0)
+      problem.pairs.emplace_back(std::max(row.side[0], row.side[1]),
+                                 std::min(row.side[0], row.side[1]));
+  }
+  std::sort(problem.pairs.begin(), problem.pairs.end());
+  problem.pairs.erase(std::unique(problem.pairs.begin(), problem.pairs.end()),
+                      problem.pairs.end());
+  for (Row& row : island.rows) {
+    if (row.side[0] < 0 || row.side[1] < 0) continue;
+    const std::pair<int, int> key(std::max(row.side[0], row.side[1]),
+                                  std::min(row.side[0], row.side[1]));
+    row.pair = static_cast<int>(std::lower_bound(problem.pairs.begin(), problem.pairs.end(), key) -
+                                problem.pairs.begin());
+  }
+  island.factor.set_pattern(static_cast<int>(nb), problem.pairs);
+}
+
+Vec2 row_velocity(const Row& row, const Vector& y) {
+  Vec2 u = row.constant;
+  for (int s = 0; s < 2; ++s)
+    if (row.side[s] >= 0) u += row.jacobian[s] * y.segment<6>(6 * row.side[s]);
+  return u;
+}
+
+// The friction limits of each patch from its normal impulses: mu times their sum (slip), mu
+// times their moments about the centre (twist), mu_r R times their sum (rolling).
+void set_limits(const IslandProblem& problem, std::vector<Row>& rows,
+                const std::vector<Real>& normal_impulse, Real& change, Real& largest) {
+  change = largest = 0;
+  for (const IslandProblem::PatchRows& pr : problem.patch_rows) {
+    Real total = 0, reach = 0;
+    for (int r = pr.first; r < pr.first + pr.normals; ++r) {
+      total += normal_impulse[r];
+      reach += normal_impulse[r] * rows[r].lever;
+    }
+    auto set = [&](int r, Real limit) {
+      if (r < 0) return;
+      change = std::max(change, std::abs(limit - rows[r].radius));
+      largest = std::max(largest, limit);
+      rows[r].radius = limit;
+    };
+    set(pr.slip, pr.mu * total);
+    // The twist limit is a moment: compared as the force that gives it at the mean lever.
+    if (pr.twist >= 0) {
+      const Real before = rows[pr.twist].radius;
+      rows[pr.twist].radius = pr.mu * reach;
+      if (reach > 0 && total > 0)
+        change = std::max(change, std::abs(pr.mu * reach - before) * total / reach);
+    }
+    set(pr.rolling, pr.rolling_limit * total);
+  }
+}
+
+// Newton's method on one island. Returns the iterations taken.
+struct NewtonState {
+  Vector y, step, gradient, rhs;
+  std::vector<Vec2> u, du;
+  std::vector<RowResponse> response;
+  std::vector<Mat6> diagonal, off_diagonal;
+  std::vector<Real> normal_impulse;
+};
+
+// l(y) and, with `gradient`, its gradient; each row's velocity and response kept in `s`.
+Real evaluate(const Island& island, const IslandProblem& problem, NewtonState& s, Real band,
+              bool gradient) {
+  const std::vector<Row>& rows = island.rows;
+  const size_t nb = island.bodies.size();
+  s.u.resize(rows.size());
+  s.response.resize(rows.size());
+  Real value = 0;
+  if (gradient) s.gradient.resize(s.y.size());
+  for (size_t k = 0; k < nb; ++k) {
+    const Vec6 d = s.y.segment<6>(static_cast<Eigen::Index>(6 * k)) -
+                   problem.free.segment<6>(static_cast<Eigen::Index>(6 * k));
+    const Vec6 md = problem.metric[k] * d;
+    value += 0.5 * d.dot(md);
+    if (gradient) s.gradient.segment<6>(static_cast<Eigen::Index>(6 * k)) = md;
+  }
+  for (size_t r = 0; r < rows.size(); ++r) {
+    s.u[r] = row_velocity(rows[r], s.y);
+    s.response[r] = newton::respond(rows[r], s.u[r], band);
+    value += s.response[r].value;
+    if (!gradient) continue;
+    for (int side = 0; side < 2; ++side)
+      if (rows[r].side[side] >= 0)
+        s.gradient.segment<6>(6 * rows[r].side[side]) -=
+            rows[r].jacobian[side].transpose() * s.response[r].impulse;
+  }
+  return value;
+}
+
+void assemble(const Island& island, const IslandProblem& problem, NewtonState& s) {
+  s.diagonal = problem.metric;
+  s.off_diagonal.assign(problem.pairs.size(), Mat6::Zero());
+  for (size_t r = 0; r < island.rows.size(); ++r) {
+    const Row& row = island.rows[r];
+    const Mat2& g = s.response[r].curvature;
+    if (g.isZero(0)) continue;
+    for (int a = 0; a < 2; ++a) {
+      if (row.side[a] < 0) continue;
+      const Eigen::Matrix<Real, 6, 2> jg = row.jacobian[a].transpose() * g;
+      s.diagonal[row.side[a]] += jg * row.jacobian[a];
+    }
+    if (row.pair >= 0) {
+      // The block (i, j), i > j: J_i^T G J_j.
+      const int i = row.side[0] > row.side[1] ? 0 : 1;
+      s.off_diagonal[row.pair] += row.jacobian[i].transpose() * g * row.jacobian[1 - i];
+    }
+  }
+}
+
+// The slope of l along the step at y + alpha step, and its curvature.
+std::pair<Real, Real> slope_at(const Island& island, const NewtonState& s, Real base,
+                               Real metric_step, Real alpha) {
+  Real slope = base + alpha * metric_step, curvature = metric_step;
+  for (size_t r = 0; r < island.rows.size(); ++r) {
+    if (s.du[r].isZero(0)) continue;
+    const RowResponse q = newton::respond(island.rows[r], s.u[r] + alpha * s.du[r]);
+    slope -= s.du[r].dot(q.impulse);
+    curvature += s.du[r].dot(q.curvature * s.du[r]);
+  }
+  return {slope, curvature};
+}
+
+inline constexpr Real kLongestStep = 1 << 20;
+
+// The exact line search: the alpha > 0 where l's slope along the step vanishes (it rises
+// monotonically, l being convex), by Newton's method safeguarded by bisection.
+Real line_search(const Island& island, const IslandProblem& problem, NewtonState& s) {
+  const size_t nb = island.bodies.size();
+  Real base = 0, metric_step = 0;
+  for (size_t k = 0; k < nb; ++k) {
+    const Eigen::Index at = static_cast<Eigen::Index>(6 * k);
+    const Vec6 m_step = problem.metric[k] * s.step.segment<6>(at);
+    base += m_step.dot(s.y.segment<6>(at) - problem.free.segment<6>(at));
+    metric_step += m_step.dot(s.step.segment<6>(at));
+  }
+  s.du.resize(island.rows.size());
+  for (size_t r = 0; r < island.rows.size(); ++r) {
+    const Row& row = island.rows[r];
+    s.du[r].setZero();
+    for (int side = 0; side < 2; ++side)
+      if (row.side[side] >= 0) s.du[r] += row.jacobian[side] * s.step.segment<6>(6 * row.side[side]);
+  }
+  const Real slope0 = slope_at(island, s, base, metric_step, 0).first;
+  if (!(slope0 < 0)) return 0;  // no descent left (round-off)
+  // Where the slope is still falling at 1 (the Hessian overestimated a row's curvature), the
+  // bracket grows until it rises.
+  Real lo = 0, hi = 1;
+  auto [slope, curvature] = slope_at(island, s, base, metric_step, hi);
+  while (slope < 0 && hi < kLongestStep) {
+    lo = hi;
+    hi *= 2;
+    std::tie(slope, curvature) = slope_at(island, s, base, metric_step, hi);
+  }
+  if (slope <= 0) return hi;
+  Real alpha = hi;
+  for (int k = 0; k < 100; ++k) {
+    Real next = curvature > 0 ? alpha - slope / curvature : -1;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    alpha = next;
+    std::tie(slope, curvature) = slope_at(island, s, base, metric_step, alpha);
+    if (slope > 0) hi = alpha;
+    else lo = alpha;
+    if (std::abs(slope) <= 1e-12 * -slope0 || hi - lo <= 1e-14) break;
+  }
+  return alpha;
+}
+
+// W sum J^T gamma over the rows of the island, gamma each row's impulse in `s`: the change of
+// velocity the impulses make, W = diag(1 / mass, Q) per body.
+Vector mobility_times(const Island& island, const std::vector<BodyResponse>& bodies,
+                      const IslandProblem& problem, const NewtonState& s) {
+  Vector push = Vector::Zero(problem.free.size());
+  for (size_t r = 0; r < island.rows.size(); ++r)
+    for (int side = 0; side < 2; ++side)
+      if (island.rows[r].side[side] >= 0)
+        push.segment<6>(6 * island.rows[r].side[side]) +=
+            island.rows[r].jacobian[side].transpose() * s.response[r].impulse;
+  for (size_t k = 0; k < island.bodies.size(); ++k) {
+    const Eigen::Index at = static_cast<Eigen::Index>(6 * k);
+    const BodyResponse& b = bodies[island.bodies[k]];
+    push.segment<3>(at) *= b.inverse_mass;
+    push.segment<3>(at + 3) = b.angular * Vec3(push.segment<3>(at + 3));
+  }
+  return push;
+}
+
+// The stopping rule. The gradient of l is M (y - y_free) - sum J^T gamma: the momentum the
+// impulses read off the rows fail to give the bodies. Converged when it is, in the norm of M^-1,
+// at most `tolerance` of the impulses' own (|M (y - y_free)|) or at the round-off that the rows'
+// 1/R amplifies (kRoundOff times |y|_M): the impulses then move the bodies to y, to that
+// tolerance, whatever the regularisation.
+inline constexpr Real kRoundOff = 100 * std::numeric_limits<Real>::epsilon() /
+                                  newton::kRegularisation;
+
+bool balanced(const Island& island, const std::vector<BodyResponse>& bodies,
+              const IslandProblem& problem, const NewtonState& s, Real tolerance) {
+  Real residual = 0, made = 0, size = 0;
+  for (size_t k = 0; k < island.bodies.size(); ++k) {
+    const Eigen::Index at = static_cast<Eigen::Index>(6 * k);
+    const BodyResponse& b = bodies[island.bodies[k]];
+    const Vec6 g = s.gradient.segment<6>(at);
+    residual += b.inverse_mass * g.head<3>().squaredNorm() + g.tail<3>().dot(b.angular * g.tail<3>());
+    const Vec6 d = s.y.segment<6>(at) - problem.free.segment<6>(at);
+    made += d.dot(problem.metric[k] * d);
+    const Vec6 y = s.y.segment<6>(at);
+    size += y.dot(problem.metric[k] * y);
+  }
+  return std::sqrt(residual) <= tolerance * std::sqrt(made) + kRoundOff * std::sqrt(size);
+}
+
+// One island: the warm start, Newton passes of the friction fixed point, the energy check.
+void solve_island(const std::vector<ContactPoint>& points, const std::vector<Real>& start,
+                  const std::vector<Real>& targets, const std::vector<BodyResponse>& bodies,
+                  const std::vector<Vec3>& centres, const SolverSettings& settings,
+                  std::vector<PatchFriction>& patches, std::vector<PointImpulse>& impulses,
+                  const std::vector<int>& local, Island& island) {
+  IslandProblem problem;
+  build_island(points, start, targets, bodies, centres, settings, patches, local, island, problem);
+  std::vector<Row>& rows = island.rows;
+  NewtonState s;
+
+  // The warm start: the last step's impulses applied to y_free, kept if l is lower there.
+  std::vector<Real>& normal = s.normal_impulse;
+  normal.assign(rows.size(), 0);
+  for (size_t r = 0; r < rows.size(); ++r)
+    if (rows[r].kind == Row::Kind::normal) normal[r] = impulses[rows[r].point].normal;
+  Real change = 0, largest = 0;
+  set_limits(problem, rows, normal, change, largest);
+  NewtonState warm;
+  warm.response.assign(rows.size(), RowResponse{});
+  for (const IslandProblem::PatchRows& pr : problem.patch_rows) {
+    const PatchFriction& p = patches[pr.patch];
+    for (int r = pr.first; r < pr.first + pr.normals; ++r)
+      warm.response[r].impulse = Vec2(normal[r], 0);
+    if (pr.slip >= 0) warm.response[pr.slip].impulse = Vec2(p.t1, p.t2);
+    if (pr.twist >= 0) warm.response[pr.twist].impulse = Vec2(p.twist, 0);
+    if (pr.rolling >= 0) warm.response[pr.rolling].impulse = Vec2(p.roll1, p.roll2);
+  }
+  warm.y = problem.free + mobility_times(island, bodies, problem, warm);
+  s.y = problem.free;
+  const Real at_free = evaluate(island, problem, s, -1, false);
+  s.y = warm.y;
+  if (evaluate(island, problem, s, -1, false) > at_free) s.y = problem.free;
+
+  // How near its target a normal row counts as pushing in the first Hessian (newton_rows.hpp):
+  // a millionth of the largest velocity change a row asks of the free motion.
+  Real ask = 0;
+  for (const Row& row : rows)
+    if (row.kind == Row::Kind::normal)
+      ask = std::max(ask, std::abs(row.target - row_velocity(row, problem.free).x()));
+  const Real band = 1e-6 * ask;
+
+  const Real tolerance = settings.tolerance;
+  island.iterations = 0;
+  island.converged = false;
+  // Passes of Newton's method, each with the friction limits held; between them the limits are
+  // set from the new normal impulses and the energy rule of friction is applied, until neither
+  // changes anything.
+  for (int pass = 0; pass < kMaxFrictionPasses; ++pass) {
+    bool newton_converged = false;
+    while (true) {
+      const bool first = island.iterations == 0;
+      evaluate(island, problem, s, first ? band : -1, true);
+      if (balanced(island, bodies, problem, s, tolerance)) {
+        newton_converged = true;
+        break;
+      }
+      if (island.iterations == kMaxNewtonIterations) break;
+      assemble(island, problem, s);
+      if (!island.factor.factorise(s.diagonal, s.off_diagonal)) break;
+      s.rhs = -s.gradient;
+      island.factor.solve(s.rhs, s.step);
+      ++island.iterations;
+      const Real alpha = line_search(island, problem, s);
+      if (alpha == 0) {  // no descent left: round-off
+        newton_converged = true;
+        break;
+      }
+      s.y += alpha * s.step;
+    }
+    if (!newton_converged) break;
+    for (size_t r = 0; r < rows.size(); ++r)
+      normal[r] = rows[r].kind == Row::Kind::normal ? s.response[r].impulse.x() : 0;
+    set_limits(problem, rows, normal, change, largest);
+    // The energy rule of friction (semm.cpp, friction_block): a friction, twist or rolling
+    // impulse that pushes along the slip the step started with would do the work
+    // gamma . (u_start + u_after) / 2 > 0; such a row asks, from the next pass on, for its
+    // start velocity mirrored (u_after = -u_start, no work) instead of none.
+    bool mirrored = false;
+    for (size_t r = 0; r < rows.size(); ++r) {
+      Row& row = rows[r];
+      if (row.kind == Row::Kind::normal || row.mirrored ||
+          !(s.response[r].impulse.dot(row.start) > 0))
+        continue;
+      row.mirrored = true;
+      row.constant += row.start;
+      mirrored = true;
+    }
+    if (change <= tolerance * largest && !mirrored) {
+      island.converged = true;
+      break;
+    }
+  }
+  evaluate(island, problem, s, -1, false);
+  // The velocities the impulses read off the rows give the bodies (y, to the tolerance).
+  NewtonState given;
+  given.y = problem.free + mobility_times(island, bodies, problem, s);
+  evaluate(island, problem, given, -1, false);
+
+  // Energy over the step (semm_rows.cpp, energy_scale): each row's impulse does the work
+  // gamma . (u_start + u_after) / 2; should the sum be positive, scale every impulse of the
+  // island by the largest s with s B + s^2 A <= 0.
+  Real added = 0, curvature = 0;
+  NewtonState free_state;
+  free_state.y = problem.free;
+  evaluate(island, problem, free_state, -1, false);
+  for (size_t r = 0; r < rows.size(); ++r) {
+    const Vec2& gamma = s.response[r].impulse;
+    if (gamma.isZero(0)) continue;
+    // u without the mirrored start: the row's real velocity.
+    const Vec2 shift = rows[r].mirrored ? rows[r].start : Vec2::Zero();
+    added += gamma.dot(rows[r].start + given.u[r] - shift) / 2;
+    curvature += gamma.dot(given.u[r] - free_state.u[r]) / 2;
+  }
+  island.scale = 1;
+  if (added > 0) {
+    const Real linear = added - curvature;
+    island.scale = linear < 0 && curvature > 0 ? std::clamp<Real>(-linear / curvature, 0, 1) : 0;
+  }
+
+  // The impulses, back in the caller's places.
+  const Real scale = island.scale;
+  for (const IslandProblem::PatchRows& pr : problem.patch_rows) {
+    PatchFriction& p = patches[pr.patch];
+    for (int r = pr.first; r < pr.first + pr.normals; ++r)
+      impulses[rows[r].point].normal = scale * s.response[r].impulse.x();
+    const Vec2 slip = pr.slip >= 0 ? Vec2(scale * s.response[pr.slip].impulse) : Vec2::Zero();
+    p.t1 = slip.x();
+    p.t2 = slip.y();
+    p.twist = pr.twist >= 0 ? scale * s.response[pr.twist].impulse.x() : 0;
+    const Vec2 roll =
+        pr.rolling >= 0 ? Vec2(scale * s.response[pr.rolling].impulse) : Vec2::Zero();
+    p.roll1 = roll.x();
+    p.roll2 = roll.y();
+  }
+}
+
+// The islands Newton did not converge, solved together by the row solver from the step's warm
+// start; their results written back in the caller's places.
+SolverReport solve_by_rows(const std::vector<ContactPoint>& points, const std::vector<Real>& start,
+                           const std::vector<Real>& targets,
+                           const std::vector<BodyResponse>& bodies,
+                           const std::vector<Vec3>& centres, const SolverSettings& settings,
+                           std::vector<PatchFriction>& patches,
+                           std::vector<PointImpulse>& impulses, NewtonSolverMemory& memory) {
+  NewtonSolverMemory::Fallback& f = memory.fallback;
+  f.points.clear();
+  f.start.clear();
+  f.targets.clear();
+  f.patches.clear();
+  f.impulses.clear();
+  f.patch_of.clear();
+  for (const Island& island : memory.islands) {
+    if (island.converged) continue;
+    for (const int k : island.patches) {
+      PatchFriction p = memory.warm_patches[k];
+      const int first = p.first;
+      p.first = static_cast<int>(f.points.size());
+      for (int i = first; i < memory.warm_patches[k].last; ++i) {
+        ContactPoint c = points[i];
+        c.patch = static_cast<int>(f.patches.size());
+        f.points.push_back(c);
+        f.start.push_back(start[i]);
+        f.targets.push_back(targets[i]);
+        f.impulses.push_back(memory.warm_impulses[i]);
+      }
+      p.last = static_cast<int>(f.points.size());
+      f.patches.push_back(p);
+      f.patch_of.push_back(k);
+    }
+  }
+  const SolverReport report = solve_semm_rows(f.points, f.start, f.targets, bodies, centres,
+                                              settings, f.patches, f.impulses, f.rows);
+  for (size_t j = 0; j < f.patches.size(); ++j) {
+    const PatchFriction& solved = f.patches[j];
+    PatchFriction& p = patches[f.patch_of[j]];
+    for (int i = solved.first; i < solved.last; ++i)
+      impulses[p.first + (i - solved.first)] = f.impulses[i];
+    p.t1 = solved.t1;
+    p.t2 = solved.t2;
+    p.twist = solved.twist;
+    p.roll1 = solved.roll1;
+    p.roll2 = solved.roll2;
+  }
+  return report;
+}
+
+}  // namespace
+
+SolverReport solve_semm_newton(const std::vector<ContactPoint>& points,
+                               const std::vector<Real>& start, const std::vector<Real>& targets,
+                               const std::vector<BodyResponse>& bodies,
+                               const std::vector<Vec3>& centres, const SolverSettings& settings,
+                               std::vector<PatchFriction>& patches,
+                               std::vector<PointImpulse>& impulses, NewtonSolverMemory& memory) {
+  impulses.resize(points.size());
+  SolverReport report;
+  report.sweeps = 0;
+  if (points.empty()) return report;
+  // Points on patches that no island solves (between bodies that do not answer) push nothing.
+  for (const PatchFriction& p : patches)
+    if (!is_unknown(bodies, p.body_a) && !is_unknown(bodies, p.body_b))
+      for (int i = p.first; i < p.last; ++i) impulses[i].normal = 0;
+  memory.warm_impulses = impulses;
+  memory.warm_patches = patches;
+  find_islands(patches, bodies, memory);
+  // Each island on one thread, taken one by one (islands differ much in size).
+  parallel_for(
+      static_cast<long long>(memory.islands.size()), 1,
+      [&](long long k) {
+        solve_island(points, start, targets, bodies, centres, settings, patches, impulses,
+                     memory.local_of_body, memory.islands[k]);
+      },
+      true);
+  for (const Island& island : memory.islands) {
+    report.sweeps = std::max(report.sweeps, island.iterations);
+    if (island.converged) report.scale = std::min(report.scale, island.scale);
+    else ++report.fallback_islands;
+  }
+  if (report.fallback_islands > 0) {
+    const SolverReport rows =
+        solve_by_rows(points, start, targets, bodies, centres, settings, patches, impulses, memory);
+    report.converged = rows.converged;
+    report.scale = std::min(report.scale, rows.scale);
+  }
+  return report;
+}
+
+}  // namespace tem

@@ -1,0 +1,126 @@
+// SEMM by Newton (contact.solver "newton", src/forces/semm_newton/): the weight of a whole column
+// reaches the floor within one solve, in as many Newton iterations at forty coins as at ten;
+// the same bits at any thread count; the scene key read and written. The closed forms of the
+// box on the floor and on the incline are in test_physics.cpp, run with both solvers.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "io/scene_reader.hpp"
+#include "io/scene_writer.hpp"
+#include "support/coin_column.hpp"
+#include "support/parallel.hpp"
+#include "support/simulate.hpp"
+
+namespace tem {
+namespace test_semm_newton {
+
+using testing_support::coin_column;
+using testing_support::kCoinThickness;
+using testing_support::report;
+using testing_support::simulate;
+
+struct Column {
+  int most_iterations = 0;
+  Real median_iterations = 0;
+  Real deepest = 0;         // deepest patch over the run
+  Real fastest_end = 0;     // fastest coin at the end (cm/s)
+  Real floor_load = 0;      // the floor's push at the end over the column's weight
+  Real energy_rise = 0;     // largest rise over one step, over |total energy| at the start
+  long long fallbacks = 0;  // islands left to the row solver
+};
+
+// A column of `layers` coins at dt 5e-4 for `duration`, solved by Newton to 1e-9.
+Column newton_column(int layers, Real duration) {
+  SceneDef scene = coin_column(layers, 5e-4);
+  scene.contact.solver = ContactSolver::newton;
+  scene.contact.tolerance = 1e-9;
+  const Model model = build_model(scene);
+  State state = initial_state(model);
+  const Real energy = std::abs(system_energies(model, state).total());
+  std::vector<int> iterations;
+  Real floor = 0;
+  Column c;
+  const auto watch = simulate(model, state, duration, [&](const State&, const Workspace& w) {
+    iterations.push_back(w.forces.solver.sweeps);
+    c.fallbacks += w.forces.solver.fallback_islands;
+    floor = 0;
+    for (size_t i = 0; i < w.forces.points.size(); ++i)
+      if (w.forces.points[i].wall == 0) floor += w.forces.impulses[i].normal;
+  });
+  std::sort(iterations.begin(), iterations.end());
+  c.most_iterations = iterations.back();
+  c.median_iterations = iterations[iterations.size() / 2];
+  c.deepest = watch.deepest;
+  for (const BodyState& b : state.bodies) c.fastest_end = std::max(c.fastest_end, b.v.norm());
+  Real weight = 0;
+  for (const Body& b : model.bodies) weight += b.inertia.mass * -scene.gravity.z();
+  c.floor_load = floor / (weight * scene.time_step);
+  c.energy_rise = watch.largest_energy_rise / energy;
+  return c;
+}
+
+// Ten and forty coins: both stand (overlap under 1 % of a coin, every coin at rest), the floor
+// carries the whole column's weight in the last step to 1e-6, and Newton's median iteration count
+// is no larger for forty coins than for ten, give or take two. Newton solves every step of the
+// ten-coin column; of the forty-coin column's 400 steps it leaves two islands (the landing's) to
+// the row solver after kMaxNewtonIterations, asked here to stay under 1 % of the steps.
+TEST(SemmNewton, ColumnStandsInIterationsThatDoNotGrowWithItsHeight) {
+  const Column ten = newton_column(10, 0.2), forty = newton_column(40, 0.2);
+  for (const auto& [name, c] : {std::pair{"10", ten}, std::pair{"40", forty}}) {
+    const std::string k = std::string(name) + "-coin column, Newton: ";
+    report(k + "median iterations", c.median_iterations);
+    report(k + "most iterations", c.most_iterations);
+    report(k + "deepest overlap / coin", c.deepest / kCoinThickness);
+    report(k + "fastest coin at the end (cm/s)", c.fastest_end);
+    report(k + "floor load / weight", c.floor_load);
+    report(k + "largest energy rise / |energy|", c.energy_rise);
+    report(k + "islands left to the row solver", static_cast<Real>(c.fallbacks));
+    EXPECT_LT(c.deepest, 0.01 * kCoinThickness);
+    EXPECT_LT(c.fastest_end, 1e-3);
+    EXPECT_NEAR(c.floor_load, 1, 1e-6);
+    EXPECT_LE(c.median_iterations, 10);
+    EXPECT_LE(c.energy_rise, 1e-12);
+  }
+  EXPECT_EQ(ten.fallbacks, 0);
+  EXPECT_LT(ten.most_iterations, kMaxNewtonIterations);
+  EXPECT_LT(forty.fallbacks, 4);  // 1 % of 400 steps
+  EXPECT_LE(forty.median_iterations, ten.median_iterations + 2);
+}
+
+// Islands are solved on their own, each on one thread: a lattice of 12 x 12 columns of three
+// coins steps to the same bits on one thread and on two.
+TEST(SemmNewton, SameBitsAtAnyThreadCount) {
+  SceneDef scene = testing_support::coin_lattice(12, 3, 5e-4);
+  scene.contact.solver = ContactSolver::newton;
+  scene.contact.tolerance = 1e-9;
+  const Model model = build_model(scene);
+  const int threads = max_threads();
+  State one = initial_state(model), two = initial_state(model);
+  set_threads(1);
+  simulate(model, one, 0.01);
+  set_threads(2);
+  simulate(model, two, 0.01);
+  set_threads(threads);
+  for (size_t i = 0; i < one.bodies.size(); ++i) {
+    EXPECT_EQ(one.bodies[i].x, two.bodies[i].x) << i;
+    EXPECT_EQ(one.bodies[i].v, two.bodies[i].v) << i;
+  }
+}
+
+TEST(SemmNewton, SceneKeyReadAndWritten) {
+  const std::string body = R"("bodies": [{"name": "b", "position": [0, 0, 0],)"
+                           R"( "shape": {"type": "box", "size": [1, 1, 1]}}])";
+  const SceneReadResult on =
+      read_scene_text(R"({"contact": {"solver": "newton"}, )" + body + "}", "newton.json");
+  ASSERT_TRUE(on.ok());
+  EXPECT_EQ(on.scene.contact.solver, ContactSolver::newton);
+  const SceneReadResult again = read_scene_text(write_scene_text(on.scene), "written.json");
+  ASSERT_TRUE(again.ok());
+  EXPECT_EQ(again.scene.contact.solver, ContactSolver::newton);
+}
+
+}  // namespace test_semm_newton
+}  // namespace tem
