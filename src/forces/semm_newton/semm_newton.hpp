@@ -1,8 +1,9 @@
-// Default SEMM solved by Newton's method on the primal problem (method.md §6, "SEMM by
-// Newton"): the same contact impulses as the row solver's (semm_rows.hpp) — the ones that
-// minimise the system's energy at the next step, normal impulses >= 0, each patch's friction,
-// twist and rolling resistance inside their Coulomb limits — found with an iteration count that
-// does not grow with the height or the size of a pile.
+// SEMM solved by Newton's method on the primal problem (contact.solver "newton", opt-in;
+// method.md, "SEMM by Newton"): the same contact impulses as the row solver's (semm_rows.hpp) —
+// the ones that minimise the system's energy at the next step, normal impulses >= 0, each
+// patch's friction, twist and rolling resistance inside their Coulomb limits — with an
+// iteration count that does not grow with the height of a column. Islands of a pour still stall
+// (the redundant points of face contacts, method.md) and fall back to the row solver.
 //
 // The unknowns are the bodies' pseudo velocities y after the step (body_response.hpp), six per
 // body; the objective is
@@ -24,10 +25,11 @@
 // than the tolerance (a fixed point, as the row solver's sweeps reach it). It starts from the
 // last step's impulses (warm start), so a pile at rest needs one pass.
 //
-// Stopping rule: a Newton pass stops when the step it takes changes the bodies' velocities, in
-// the energy norm |dy|_M, by no more than `tolerance` times the change the contact impulses make
-// (|y - y_free|_M, which is |impulses| in the norm of M^-1); the fixed point stops when no
-// patch's friction limit changed by more than `tolerance` of the largest.
+// Stopping rule: a Newton pass stops when the momentum the impulses fail to give the bodies,
+// |grad l| in the norm of M^-1, is at most `tolerance` times the impulses' own size
+// (|y - y_free|_M), or at round-off (semm_newton.cpp, balanced); the fixed point stops when no
+// patch's friction limit changed by more than `tolerance` of the largest and no row took the
+// energy rule.
 #pragma once
 
 #include <vector>
