@@ -272,7 +272,9 @@ void set_limits(const IslandProblem& problem, std::vector<Row>& rows,
   }
 }
 
-// Newton's method on one island. Returns the iterations taken.
+// One iterate of an island: y, the Newton step and the gradient there, and each row's velocity,
+// its change along the step and its response; the Hessian's blocks; the normal impulses that
+// set the friction limits.
 struct NewtonState {
   Vector y, step, gradient, rhs;
   std::vector<Vec2> u, du;
