@@ -489,16 +489,8 @@ SolverReport solve_targets(const std::vector<ContactPoint>& points,
   }
   const SolverReport report = solve_laid_out(laid_points, laid_targets, input, centres, settings,
                                              colouring.start, laid_patches, laid_impulses, bodies);
-  for (size_t j = 0; j < colouring.order.size(); ++j) {
-    PatchFriction& p = patches[colouring.order[j]];
-    const PatchFriction& laid = laid_patches[j];
-    for (int r = 0; r < p.last - p.first; ++r) impulses[p.first + r] = laid_impulses[laid.first + r];
-    p.t1 = laid.t1;
-    p.t2 = laid.t2;
-    p.twist = laid.twist;
-    p.roll1 = laid.roll1;
-    p.roll2 = laid.roll2;
-  }
+  for (size_t j = 0; j < colouring.order.size(); ++j)
+    copy_patch_result(laid_patches[j], laid_impulses, patches[colouring.order[j]], impulses);
   return report;
 }
 

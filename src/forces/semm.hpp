@@ -165,6 +165,21 @@ SolverReport solve_separation(const std::vector<ContactPoint>& points,
                               const SolverSettings& stopping = SolverSettings{},
                               RowSolverMemory* rows = nullptr);
 
+// A patch's result solved in another layout (a solver's own copy of the points and patches)
+// copied back: its points' normal impulses, from `solved_impulses` at `solved`'s run to
+// `impulses` at `patch`'s, and its friction, twist and rolling impulses.
+inline void copy_patch_result(const PatchFriction& solved,
+                              const std::vector<PointImpulse>& solved_impulses,
+                              PatchFriction& patch, std::vector<PointImpulse>& impulses) {
+  for (int r = 0; r < patch.last - patch.first; ++r)
+    impulses[patch.first + r] = solved_impulses[solved.first + r];
+  patch.t1 = solved.t1;
+  patch.t2 = solved.t2;
+  patch.twist = solved.twist;
+  patch.roll1 = solved.roll1;
+  patch.roll2 = solved.roll2;
+}
+
 // The paper's unconstrained normal-only SEMM: K S = D, solved directly.
 SolverReport solve_semm_paper(const std::vector<ContactPoint>& points,
                               const std::vector<BodyResponse>& bodies,

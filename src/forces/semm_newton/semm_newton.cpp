@@ -606,17 +606,8 @@ SolverReport solve_by_rows(const std::vector<ContactPoint>& points, const std::v
   }
   const SolverReport report = solve_semm_rows(f.points, f.start, f.targets, bodies, centres,
                                               settings, f.patches, f.impulses, f.rows);
-  for (size_t j = 0; j < f.patches.size(); ++j) {
-    const PatchFriction& solved = f.patches[j];
-    PatchFriction& p = patches[f.patch_of[j]];
-    for (int i = solved.first; i < solved.last; ++i)
-      impulses[p.first + (i - solved.first)] = f.impulses[i];
-    p.t1 = solved.t1;
-    p.t2 = solved.t2;
-    p.twist = solved.twist;
-    p.roll1 = solved.roll1;
-    p.roll2 = solved.roll2;
-  }
+  for (size_t j = 0; j < f.patches.size(); ++j)
+    copy_patch_result(f.patches[j], f.impulses, patches[f.patch_of[j]], impulses);
   return report;
 }
 
