@@ -193,8 +193,57 @@ TEST(Resume, RefusesWhatItCannotContinue) {
   const TemRun corrupted = run_tem("run " + quoted(kScene) + " --out " + quoted(dir) + " --resume");
   EXPECT_NE(corrupted.status, 0);
   EXPECT_TRUE(contains(corrupted.err, "corrupted")) << corrupted.err;
+  // A byte flipped in the version number (right after the 8-byte magic) is damage too, not a
+  // checkpoint of another version.
+  ASSERT_EQ(run_tem("run " + quoted(kScene) + " --out " + quoted(dir)).status, 0);
+  {
+    std::fstream file(dir + "/checkpoint.bin", std::ios::in | std::ios::out | std::ios::binary);
+    file.seekp(10);
+    file.put('\x10');
+  }
+  const TemRun version = run_tem("run " + quoted(kScene) + " --out " + quoted(dir) + " --resume");
+  EXPECT_NE(version.status, 0);
+  EXPECT_TRUE(contains(version.err, "corrupted")) << version.err;
+  EXPECT_FALSE(contains(version.err, "version")) << version.err;
+  // checkpoint.bin a folder: the message names it.
+  std::filesystem::remove(dir + "/checkpoint.bin");
+  std::filesystem::create_directory(dir + "/checkpoint.bin");
+  const TemRun folder = run_tem("run " + quoted(kScene) + " --out " + quoted(dir) + " --resume");
+  EXPECT_NE(folder.status, 0);
+  EXPECT_TRUE(contains(folder.err, "checkpoint.bin: is a folder")) << folder.err;
   std::filesystem::remove_all(dir);
   std::filesystem::remove(other);
+}
+
+// A mesh file changed between a run and its resume (same path, vertices scaled 1.5 times): the
+// scene's text is the same, its bodies are not, so the resume is refused naming the file.
+TEST(Resume, RefusesAMeshFileChangedSinceTheCheckpoint) {
+  const std::string dir = temp_path("resume_mesh");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir + "/out");
+  const auto write_cube = [&](double h) {
+    std::ofstream obj(dir + "/cube.obj");
+    for (int i = 0; i < 8; ++i)
+      obj << "v " << (i & 1 ? h : -h) << ' ' << (i & 2 ? h : -h) << ' ' << (i & 4 ? h : -h) << '\n';
+    // Outward faces of the cube of corners 1..8 (bit 0: x, bit 1: y, bit 2: z).
+    obj << "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+  };
+  write_cube(0.5);
+  std::ofstream(dir + "/scene.json") << R"({"time_step": 1e-3, "duration": 0.05,
+    "walls": [{"point": [0, 0, 0], "normal": [0, 0, 1]}],
+    "bodies": [{"name": "cube", "shape": {"type": "mesh", "file": "cube.obj"},
+                "position": [0, 0, 0.6]}]})";
+  const std::string run = "run " + quoted(dir + "/scene.json") + " --out " + quoted(dir + "/out");
+  const TemRun first = run_tem(run);
+  ASSERT_EQ(first.status, 0) << first.err;
+  // Unchanged: the run resumes (and, finished, has nothing left to do).
+  const TemRun same = run_tem(run + " --resume");
+  EXPECT_EQ(same.status, 0) << same.err;
+  write_cube(0.75);
+  const TemRun changed = run_tem(run + " --resume");
+  EXPECT_NE(changed.status, 0);
+  EXPECT_TRUE(contains(changed.err, "cube.obj has changed since")) << changed.err;
+  std::filesystem::remove_all(dir);
 }
 
 // Progress goes to a terminal only: with stderr in a file there is no carriage-return line.

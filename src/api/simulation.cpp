@@ -48,6 +48,7 @@ long long steps_per(Real interval, Real dt) {
 Checkpoint read_matching_checkpoint(const Model& model, const std::string& path,
                                     const std::string& scene_name) {
   Checkpoint c = read_checkpoint(path);
+  require_same_files(c.files, scene_files(model.scene), path);
   if (c.scene_fingerprint != scene_fingerprint(model.scene))
     throw std::runtime_error(path + " was taken of another scene than " + scene_name +
                              " (only duration and checkpoint_interval may change)");

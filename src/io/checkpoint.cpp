@@ -1,5 +1,6 @@
 #include "io/checkpoint.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -8,6 +9,8 @@
 #include <type_traits>
 
 #include "io/scene_writer.hpp"
+#include "mesh/mesh_body.hpp"
+#include "support/fnv1a.hpp"
 
 namespace tem {
 namespace {
@@ -22,17 +25,10 @@ constexpr char kMagic[8] = {'T', 'E', 'M', 'C', 'K', 'P', 'T', '\n'};
 // read, with an empty cache: the first resumed step searches every pair.
 // 5: each cached feature's node past the rim (CachedFeatures::beyond_rim), after the features.
 // Version 4 is still read, with none past the rim: such pairs are searched again.
-constexpr std::uint32_t kVersion = 5;
+// 6: the files the scene read and their content hashes (ReadFile), after the fingerprint.
+// Version 5 is still read, with no files to compare.
+constexpr std::uint32_t kVersion = 6;
 constexpr std::uint32_t kOldestVersion = 2;
-
-std::uint64_t fnv1a(const char* data, std::size_t size) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (std::size_t i = 0; i < size; ++i) {
-    h ^= static_cast<unsigned char>(data[i]);
-    h *= 1099511628211ull;
-  }
-  return h;
-}
 
 // Appends values as their bytes: numbers, and vectors and matrices as their coefficients.
 class Writer {
@@ -82,6 +78,12 @@ class Reader {
     return n;
   }
   bool at_end() const { return at_ == end_; }
+  std::string text(std::size_t size) {
+    if (size > end_ - at_) truncated();
+    std::string t(bytes_.data() + at_, size);
+    at_ += size;
+    return t;
+  }
 
  private:
   void take(void* out, std::size_t size) {
@@ -151,10 +153,46 @@ std::uint64_t scene_fingerprint(const SceneDef& scene) {
   return fnv1a(text.data(), text.size());
 }
 
+namespace {
+
+void add_shape_files(const ShapeDef& shape, std::vector<ReadFile>& files) {
+  for (const ShapeDef& part : shape.parts) add_shape_files(part, files);
+  if (shape.type != ShapeType::mesh || !shape.mesh) return;
+  for (const ReadFile& f : files)
+    if (f.path == shape.mesh->file_path) return;
+  files.push_back({shape.mesh->file_path, shape.mesh->content_hash});
+}
+
+}  // namespace
+
+std::vector<ReadFile> scene_files(const SceneDef& scene) {
+  std::vector<ReadFile> files;
+  for (const BodyDef& b : scene.bodies) add_shape_files(b.shape, files);
+  for (const FillDef& f : scene.fill) add_shape_files(f.body.shape, files);
+  for (const InletDef& i : scene.inlets) add_shape_files(i.body.shape, files);
+  return files;
+}
+
+void require_same_files(const std::vector<ReadFile>& taken, const std::vector<ReadFile>& now,
+                        const std::string& checkpoint) {
+  for (const ReadFile& t : taken) {
+    const auto same_path = [&](const ReadFile& f) { return f.path == t.path; };
+    const auto found = std::find_if(now.begin(), now.end(), same_path);
+    if (found == now.end())
+      throw std::runtime_error(checkpoint + " was taken of a scene that read " + t.path +
+                               ", which the scene no longer reads");
+    if (found->content_hash != t.content_hash)
+      throw std::runtime_error(t.path + " has changed since " + checkpoint +
+                               " was taken (its contents differ): the run cannot be resumed "
+                               "with it; start the run again or restore the file");
+  }
+}
+
 Checkpoint make_checkpoint(const SceneDef& scene, const State& state, const ContactForces& forces,
                            const std::vector<CachedFeatures>& features, const OutputSizes& sizes) {
   Checkpoint c;
   c.scene_fingerprint = scene_fingerprint(scene);
+  c.files = scene_files(scene);
   c.sizes = sizes;
   c.state = state;
   c.points = forces.points;
@@ -179,6 +217,12 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   w.bytes().assign(kMagic, sizeof kMagic);
   w.value(kVersion);
   w.value(c.scene_fingerprint);
+  w.value(static_cast<std::uint64_t>(c.files.size()));
+  for (const ReadFile& f : c.files) {
+    w.value(static_cast<std::uint64_t>(f.path.size()));
+    w.bytes().append(f.path);
+    w.value(f.content_hash);
+  }
   w.value(c.sizes.bodies);
   w.value(c.sizes.energy);
   w.value(c.sizes.contacts);
@@ -220,6 +264,9 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
 }
 
 Checkpoint read_checkpoint(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error))
+    throw std::runtime_error(path + ": is a folder, not a checkpoint file");
   std::ifstream file(path, std::ios::binary);
   if (!file) throw std::runtime_error(path + ": no checkpoint to resume from");
   const std::string bytes{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
@@ -231,17 +278,25 @@ Checkpoint read_checkpoint(const std::string& path) {
   const std::size_t end = bytes.size() - kSum;
   std::uint64_t stored;
   std::memcpy(&stored, bytes.data() + end, kSum);
+  // The checksum first: a damaged version number is damage, not another version.
+  if (stored != fnv1a(bytes.data(), end))
+    throw std::runtime_error(path + ": the checkpoint is corrupted (checksum mismatch)");
   Reader r(bytes, end, path);
   const auto version = r.value<std::uint32_t>();
   if (version < kOldestVersion || version > kVersion)
     throw std::runtime_error(path + ": checkpoint version " + std::to_string(version) +
                              ", this tem reads versions " + std::to_string(kOldestVersion) +
                              " to " + std::to_string(kVersion));
-  if (stored != fnv1a(bytes.data(), end))
-    throw std::runtime_error(path + ": the checkpoint is corrupted (checksum mismatch)");
 
   Checkpoint c;
   c.scene_fingerprint = r.value<std::uint64_t>();
+  if (version >= 6) {
+    c.files.resize(r.count(2 * sizeof(std::uint64_t)));
+    for (ReadFile& f : c.files) {
+      f.path = r.text(r.count(1));
+      r.value(f.content_hash);
+    }
+  }
   c.sizes.bodies = r.value<std::int64_t>();
   c.sizes.energy = r.value<std::int64_t>();
   c.sizes.contacts = r.value<std::int64_t>();

@@ -35,8 +35,17 @@ struct OutputSizes {
   std::int64_t removed = -1, sensors = -1;  // removed.csv, sensors.csv (processes)
 };
 
+// A file the scene reads (a mesh shape's file) and the hash of its contents when it was read.
+struct ReadFile {
+  std::string path;
+  std::uint64_t content_hash = 0;
+};
+
 struct Checkpoint {
   std::uint64_t scene_fingerprint = 0;
+  // The files the scene read (version 6 on; empty before): the scene's text names a file, not
+  // what it holds, so a file changed between a run and its resume is caught here.
+  std::vector<ReadFile> files;
   OutputSizes sizes;
   State state;
   // The contact memory the next step starts from (ContactForces: points, impulses, friction,
@@ -52,6 +61,15 @@ struct Checkpoint {
 // filled in), but for its duration and checkpoint interval. A checkpoint resumes only the scene
 // it was taken of, possibly with a longer duration.
 std::uint64_t scene_fingerprint(const SceneDef& scene);
+
+// The files `scene` read, each once, in the order the scene names them (bodies, fill and inlet
+// templates, parts of compounds).
+std::vector<ReadFile> scene_files(const SceneDef& scene);
+
+// Throws std::runtime_error naming the first file of `taken` whose contents now differ from
+// `now`'s, or that the scene no longer reads. `checkpoint` names the checkpoint in the message.
+void require_same_files(const std::vector<ReadFile>& taken, const std::vector<ReadFile>& now,
+                        const std::string& checkpoint);
 
 // The checkpoint of `state`, whose next step will start from the memory in `forces` and the
 // pair cache `features`.

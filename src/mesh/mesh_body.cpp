@@ -42,7 +42,7 @@ std::shared_ptr<const MeshBody> load_mesh_body(const std::string& file_path, Rea
   body->cutting = cutting;
   body->max_blocks = max_blocks;
   const auto start = std::chrono::steady_clock::now();
-  TriangleMesh mesh = read_mesh_file(file_path, scale);
+  TriangleMesh mesh = read_mesh_file(file_path, scale, &body->content_hash);
   body->check = check_mesh(mesh);
   body->read_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -2,6 +2,7 @@
 // blocks, and the mesh's own mass properties for the cross-check that `tem info` prints.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -14,6 +15,9 @@ namespace tem {
 
 struct MeshBody {
   std::string file_path;  // the file read
+  // FNV-1a of the file's bytes as read: a checkpoint records it, so that a run resumed after
+  // the file changed is refused (io/checkpoint.hpp).
+  std::uint64_t content_hash = 0;
   Real scale = 1;
   MeshCutting cutting = MeshCutting::approximate;
   int max_blocks = 0;

@@ -21,6 +21,7 @@
 
 #include "mesh/mesh_formats.hpp"
 #include "mesh/polygon_triangulation.hpp"
+#include "support/fnv1a.hpp"
 
 namespace tem {
 namespace {
@@ -154,7 +155,7 @@ TriangleMesh parse(const void* data, std::size_t size, const std::string& extens
 
 }  // namespace
 
-TriangleMesh read_mesh_file(const std::string& path, Real scale) {
+TriangleMesh read_mesh_file(const std::string& path, Real scale, std::uint64_t* content_hash) {
   const std::string extension = lower_extension(std::filesystem::path(path).extension().string());
   require_supported(extension, path);
   require_scale(scale, path);
@@ -165,6 +166,7 @@ TriangleMesh read_mesh_file(const std::string& path, Real scale) {
   if (!in) throw MeshError(path + ": cannot be opened for reading");
   std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw MeshError(path + ": cannot be read");
+  if (content_hash) *content_hash = fnv1a(bytes.data(), bytes.size());
   return parse(bytes.data(), bytes.size(), extension, path, scale);
 }
 

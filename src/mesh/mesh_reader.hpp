@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "mesh/triangle_mesh.hpp"
@@ -18,7 +19,9 @@ namespace tem {
 // is multiplied by `scale` (> 0). Throws MeshError for a missing or unreadable file, an unknown
 // extension, a damaged file (the message names the line in text formats), a file with no faces,
 // points or lines among its faces, or a non-finite coordinate.
-TriangleMesh read_mesh_file(const std::string& path, Real scale = 1.0);
+// `content_hash`, when given, receives the FNV-1a hash of the file's bytes (support/fnv1a.hpp).
+TriangleMesh read_mesh_file(const std::string& path, Real scale = 1.0,
+                            std::uint64_t* content_hash = nullptr);
 
 // The same from bytes in memory; `extension` ("obj", "stl", ...) says the format and `source`
 // names it in messages. The fuzz target reads meshes this way.
