@@ -604,6 +604,32 @@ TEST(ProcessSceneReader, ForceSensorNamesBodiesOrFillCopies) {
                  "sensors[0].bodies", {"must be a non-empty list of body names"});
 }
 
+// Named twice, a body's force and mass would be counted twice: refused where it is named again.
+TEST(ProcessSceneReader, ForceSensorNamesEachBodyOnce) {
+  expect_problem(with_body("", R"("sensors": [{"name": "s", "type": "force", )"
+                               R"("bodies": ["a", "a"]}])"),
+                 "sensors[0].bodies[1]", {"'a' is already named by sensors[0].bodies[0]", "once"});
+}
+
+// Inlet copies come and go: a sensor names them as NAME_<k> (k < count) or all of them, and
+// any other bodies, by a prefix ending in '*'; a prefix that names no body is refused.
+TEST(ProcessSceneReader, ForceSensorNamesInletCopiesAndPrefixes) {
+  const auto with_sensor = [](const std::string& bodies) {
+    return with_inlet("", R"({"shape": )" + kBox + "}",
+                      R"("sensors": [{"name": "s", "type": "force", "bodies": )" + bodies + "}]");
+  };
+  for (const std::string ok : {R"(["feed_*"])", R"(["feed_9"])", R"(["f*"])", R"(["*"])",
+                               R"(["feed_1*"])", R"(["feed_*", "feed_3"])"})
+    EXPECT_TRUE(read_text(with_sensor(ok)).ok()) << ok;
+  expect_problem(with_sensor(R"(["feed_10"])"), "sensors[0].bodies[0]", {"unknown body 'feed_10'"});
+  expect_problem(with_sensor(R"(["feed_10*"])"), "sensors[0].bodies[0]",
+                 {"'feed_10*' names no body", "starts with 'feed_10'"});
+  expect_problem(with_sensor(R"(["grain*"])"), "sensors[0].bodies[0]", {"names no body"});
+  EXPECT_TRUE(sensor_entry_names("feed_*", "feed_12"));
+  EXPECT_FALSE(sensor_entry_names("feed_*", "feeder"));
+  EXPECT_FALSE(sensor_entry_names("feed_1", "feed_12"));
+}
+
 TEST(ProcessSceneReader, RegionSensorNeedsARegion) {
   expect_problem(with_body("", R"("sensors": [{"name": "s", "type": "region"}])"), "sensors[0]",
                  {"missing required key 'region'"});

@@ -100,6 +100,44 @@ TEST(Processes, PlateForceSensorReadsTheWeightOfWhatRestsOnIt) {
   std::filesystem::remove_all(dir);
 }
 
+// A force sensor on an inlet's copies by prefix ("feed_*"): each copy counts from the step it
+// is placed, and once the three cubes rest on the floor the sensor reads their weight, once.
+TEST(Processes, ForceSensorByPrefixReadsTheWeightOfInletCopies) {
+  const std::string dir = temp_path("inlet_sensor");
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/scene.json") << R"({
+    "time_step": 1e-3, "duration": 0.6,
+    "container": {"min": [-3, -3, 0], "max": [3, 3, 6]},
+    "inlets": [{"name": "feed", "region": {"min": [-2, -2, 0.1], "max": [2, 2, 1.9]},
+                "rate": 50, "count": 3, "seed": 4,
+                "body": {"shape": {"type": "box", "size": [1, 1, 1]}, "density": 2}}],
+    "sensors": [{"name": "copies", "type": "force", "bodies": ["feed_*", "feed_1"]}],
+    "output": {"interval": 0.05}
+  })";
+  const auto run = run_tem("run '" + dir + "/scene.json' --out '" + dir + "/out'");
+  ASSERT_EQ(run.status, 0) << run.err;
+  const std::vector<std::string> rows = lines(slurp(dir + "/out/sensors.csv"));
+  const Real m = 2.0, weight = m * kG;
+  int checked = 0;
+  for (size_t i = 1; i < rows.size(); ++i) {
+    const auto f = fields(rows[i]);
+    ASSERT_EQ(f.size(), 10u);
+    const Real t = std::stod(f[0]);
+    if (t < 0.01) {
+      EXPECT_LE(std::stoi(f[2]), 1) << rows[i];  // one copy placed per 0.02 s
+    }
+    if (t < 0.45) continue;                                 // the third lands by t = 0.04 + 0.37
+    EXPECT_EQ(f[2], "3") << rows[i];
+    EXPECT_NEAR(std::stod(f[3]), 3 * m, 1e-12);
+    EXPECT_NEAR(std::stod(f[4]), 0, 1e-6 * weight);
+    EXPECT_NEAR(std::stod(f[5]), 0, 1e-6 * weight);
+    EXPECT_NEAR(std::stod(f[6]), 3 * weight, 1e-6 * weight);
+    ++checked;
+  }
+  EXPECT_GE(checked, 3);
+  std::filesystem::remove_all(dir);
+}
+
 // A gate removed at a time: the grains resting on it fall freely from that moment.
 TEST(Processes, BoxOnAGateFallsFreelyOnceTheGateIsRemoved) {
   const std::string scene = R"({

@@ -88,8 +88,17 @@ struct SensorDef {
   SensorType type = SensorType::plane;
   Vec3 point = Vec3::Zero();    // plane
   Vec3 normal = Vec3::UnitZ();  // plane: unit, the direction that counts +1
-  std::vector<std::string> bodies;  // force: names of bodies
-  RegionDef region;                 // region
+  // force: names of bodies; an entry ending in '*' names every body whose name starts with
+  // what comes before it ("feed_*": every copy of inlet "feed", as they come).
+  std::vector<std::string> bodies;
+  RegionDef region;  // region
 };
+
+// Whether a force sensor's entry ("name" or "prefix*") names the body called `body_name`.
+inline bool sensor_entry_names(const std::string& entry, const std::string& body_name) {
+  if (!entry.empty() && entry.back() == '*')
+    return body_name.compare(0, entry.size() - 1, entry, 0, entry.size() - 1) == 0;
+  return entry == body_name;
+}
 
 }  // namespace tem

@@ -70,6 +70,36 @@ std::optional<std::pair<std::string, long long>> split_copy_name(const std::stri
   return std::make_pair(name.substr(0, underscore), std::stoll(digits));
 }
 
+// Whether a force sensor's "prefix*" entry can name a body of the run: one of 'bodies', or a
+// copy NAME_<k> made by a fill or an inlet.
+bool prefix_names_a_body(const SceneDef& scene, const std::string& entry) {
+  const auto names = [&](const std::string& name) { return sensor_entry_names(entry, name); };
+  for (const BodyDef& b : scene.bodies)
+    if (names(b.name)) return true;
+  const std::string prefix = entry.substr(0, entry.size() - 1);
+  // The copies of `source` (count of them) that the prefix names: all of them when the prefix is
+  // a start of "NAME_"; otherwise those whose number starts with the prefix's digits after it.
+  const auto names_a_copy = [&](const std::string& source, long long count) {
+    if (count <= 0) return false;
+    const std::string stem = source + "_";
+    if (stem.compare(0, prefix.size(), prefix) == 0 && prefix.size() <= stem.size()) return true;
+    if (prefix.compare(0, stem.size(), stem) != 0) return false;
+    const std::string digits = prefix.substr(stem.size());
+    if (!std::all_of(digits.begin(), digits.end(),
+                     [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }) ||
+        digits.size() > 18 || (digits.size() > 1 && digits[0] == '0'))
+      return false;
+    if (digits == "0") return true;
+    // Some k < count whose decimal digits start with `digits`: the smallest is `digits` itself.
+    return std::stoll(digits) < count;
+  };
+  for (const FillDef& f : scene.fill)
+    if (names_a_copy(f.name, f.count)) return true;
+  for (const InletDef& i : scene.inlets)
+    if (names_a_copy(i.name, i.count)) return true;
+  return false;
+}
+
 // 'name' as the brief messages show it, or in_quotes() when it needs escaping or cutting.
 std::string quoted_name(const std::string& name) {
   const std::string quoted = in_quotes(name);
@@ -398,6 +428,15 @@ void ProcessReader::read_sensors(const Json& j, const std::string& path,
         }
         for (std::size_t k = 0; k < b->size(); ++k) {
           if (auto name = r_.string((*b)[k], element(bpath, k))) {
+            // Named twice, a body's force and mass would be counted twice.
+            const auto first = std::find(sensor.bodies.begin(), sensor.bodies.end(), *name);
+            if (first != sensor.bodies.end()) {
+              r_.fail(element(bpath, k),
+                      "body " + quoted_name(*name) + " is already named by " +
+                          element(bpath, static_cast<std::size_t>(first - sensor.bodies.begin())) +
+                          "; a force sensor counts each body once, so name it once");
+              continue;
+            }
             sensor.bodies.push_back(*name);
             sensor_body_refs_.emplace_back(element(bpath, k), *name);
           }
@@ -447,10 +486,21 @@ void ProcessReader::check_sensor_bodies(const SceneDef& scene) {
     bodies.insert(b.name);
     names.push_back(b.name);
   }
-  std::map<std::string, int> fill_counts;
+  std::map<std::string, int> fill_counts;  // and inlets' counts: their copies are named alike
   for (const FillDef& f : scene.fill) fill_counts[f.name] = std::max(fill_counts[f.name], f.count);
+  for (const InletDef& i : scene.inlets)
+    fill_counts[i.name] = std::max(fill_counts[i.name], i.count);
   for (const auto& [path, name] : sensor_body_refs_) {
     if (bodies.count(name)) continue;
+    if (!name.empty() && name.back() == '*') {
+      if (!prefix_names_a_body(scene, name)) {
+        r_.fail(path, quoted_name(name) +
+                          " names no body: no body of 'bodies' and no copy made by 'fill' or an "
+                          "inlet has a name that starts with " +
+                          quoted_name(name.substr(0, name.size() - 1)));
+      }
+      continue;
+    }
     if (const auto copy = split_copy_name(name)) {
       const auto it = fill_counts.find(copy->first);
       if (it != fill_counts.end() && copy->second < it->second) continue;
@@ -460,8 +510,8 @@ void ProcessReader::check_sensor_bodies(const SceneDef& scene) {
       reason += " (did you mean '" + std::string(*guess) + "'?)";
     } else {
       reason +=
-          " (a force sensor names bodies of 'bodies' or copies made by 'fill', NAME_0 to "
-          "NAME_<count-1>)";
+          " (a force sensor names bodies of 'bodies', copies made by 'fill' or an inlet, NAME_0 "
+          "to NAME_<count-1>, or with 'PREFIX*' every body whose name starts with PREFIX)";
     }
     r_.fail(path, reason);
   }

@@ -50,7 +50,7 @@ Body inlet_copy(Model& model, int j, long long copy, Real scale) {
   Body body = scale == 1 ? model.inlet_templates[j] : build_body(inlet.body, model, scale);
   body.name = inlet.name + "_" + std::to_string(copy);
   body.start_velocity = inlet.velocity;
-  body.force_sensors.clear();
+  body.force_sensors = force_sensors_naming(model.scene, body.name);
   return body;
 }
 

@@ -226,16 +226,23 @@ Model build_model(const SceneDef& scene) {
   return model;
 }
 
-void assign_force_sensors(Model& model) {
-  const std::vector<SensorDef>& sensors = model.scene.sensors;
-  for (Body& body : model.bodies) {
-    body.force_sensors.clear();
-    for (size_t k = 0; k < sensors.size(); ++k) {
-      if (sensors[k].type != SensorType::force) continue;
-      for (const std::string& name : sensors[k].bodies)
-        if (name == body.name) body.force_sensors.push_back(static_cast<int>(k));
-    }
+std::vector<int> force_sensors_naming(const SceneDef& scene, const std::string& name) {
+  std::vector<int> watching;
+  for (size_t k = 0; k < scene.sensors.size(); ++k) {
+    const SensorDef& sensor = scene.sensors[k];
+    if (sensor.type != SensorType::force) continue;
+    // Once per sensor, also where a name and a prefix both name the body.
+    for (const std::string& entry : sensor.bodies)
+      if (sensor_entry_names(entry, name)) {
+        watching.push_back(static_cast<int>(k));
+        break;
+      }
   }
+  return watching;
+}
+
+void assign_force_sensors(Model& model) {
+  for (Body& body : model.bodies) body.force_sensors = force_sensors_naming(model.scene, body.name);
 }
 
 Real body_size(const Model& model, int body) { return body_size(model, model.bodies[body]); }

@@ -113,6 +113,8 @@ Body build_body(const BodyDef& def, Model& model, Real scale = 1);
 int add_block(Model& model, Block block);
 // Fills each body's force_sensors from the scene's sensors.
 void assign_force_sensors(Model& model);
+// The force sensors (indices into scene.sensors) that name a body called `name`, each once.
+std::vector<int> force_sensors_naming(const SceneDef& scene, const std::string& name);
 
 // The block of a body's `instance`-th block instance.
 inline const Block& block_of(const Model& model, int body, int instance) {
