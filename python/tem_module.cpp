@@ -236,13 +236,14 @@ the normal and tangential forces on body_a, averaged over the step: forces, not 
       .def(
           "record",
           [](PySimulation& s, const py::object& directory, bool contacts) {
-            s.get().record(path_of(directory), contacts);
+            return s.get().record(path_of(directory), contacts);
           },
           py::arg("directory"), py::arg("contacts") = false,
           "Writes `tem run`'s files into `directory` (bodies.csv, energy.csv, scene.json; "
           "contacts.csv with contacts=True; checkpoints and ParaView files when the scene asks) "
           "from now on: a row now, then every output interval. Call finish_recording() at the "
-          "end.")
+          "end. Returns the names of an earlier run's files it removed from `directory` "
+          "(those this run would not write again, so none passes for this run's).")
       .def(
           "finish_recording", [](PySimulation& s) { s.get().finish_recording(); },
           "Writes the last state's row and closes the files record() opened.")

@@ -332,6 +332,65 @@ TEST(Cli, RunWritesTheResultFiles) {
   std::filesystem::remove_all(dir2);
 }
 
+// A new run into a folder that holds an earlier run's results: the earlier run's files that the
+// new run does not write (here contacts.csv, sensors.csv, ParaView frames) are removed and
+// named, so none passes for the new run's; a file TEM did not write (a user's notes.csv, a
+// contacts.csv of another header) stays.
+TEST(Cli, ANewRunRemovesAnEarlierRunsFilesItDoesNotWrite) {
+  const std::string dir = testing::TempDir() + "tem_stale_" + std::to_string(getpid());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir + "/out");
+  const std::string box = R"("time_step": 1e-3, "duration": 0.02,
+      "walls": [{"point": [0, 0, 0], "normal": [0, 0, 1]}],
+      "bodies": [{"name": "box", "shape": {"type": "box", "size": [1, 1, 1]},
+                  "position": [0, 0, 0.6]}])";
+  std::ofstream(dir + "/first.json")
+      << "{" << box << R"(, "output": {"interval": 0.01, "paraview": true},
+          "sensors": [{"name": "s", "type": "force", "bodies": ["box"]}]})";
+  std::ofstream(dir + "/second.json") << "{" << box << "}";
+  const std::string out = " --out '" + dir + "/out'";
+  const TemRun first = run_tem("run '" + dir + "/first.json'" + out + " --contacts");
+  ASSERT_EQ(first.status, 0) << first.err;
+  EXPECT_TRUE(contains(first.err, "(bodies.csv, energy.csv, contacts.csv, sensors.csv, scene.json, "
+                                  "checkpoint.bin, tem.pvd and paraview/ for ParaView)"))
+      << first.err;
+  std::ofstream(dir + "/out/notes.csv") << "time,body\n";
+  ASSERT_TRUE(std::filesystem::exists(dir + "/out/paraview"));
+  const TemRun second = run_tem("run '" + dir + "/second.json'" + out);
+  ASSERT_EQ(second.status, 0) << second.err;
+  EXPECT_TRUE(contains(second.err, "removed an earlier run's files from")) << second.err;
+  EXPECT_TRUE(contains(second.err, "contacts.csv, sensors.csv, tem.pvd, paraview/ (6 frame files)"))
+      << second.err;
+  for (const char* gone : {"contacts.csv", "sensors.csv", "tem.pvd", "paraview"})
+    EXPECT_FALSE(std::filesystem::exists(dir + "/out/" + gone)) << gone;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/out/notes.csv"));
+  // Run again: nothing of an earlier run is left to remove, and nothing is said; a contacts.csv
+  // TEM did not write (another header) is kept.
+  std::ofstream(dir + "/out/contacts.csv") << "time,a,b\n";
+  const TemRun third = run_tem("run '" + dir + "/second.json'" + out);
+  ASSERT_EQ(third.status, 0) << third.err;
+  EXPECT_FALSE(contains(third.err, "removed")) << third.err;
+  EXPECT_EQ(slurp(dir + "/out/contacts.csv"), "time,a,b\n");
+  std::filesystem::remove_all(dir);
+}
+
+// --threads: a negative count is a usage error that says what is allowed (not CLI11's range of
+// 300-digit bounds); more threads than cores run, with a warning.
+TEST(Cli, ThreadsOptionSaysWhatItTakes) {
+  const std::string scene = kSource + "/tests/scenes/drop_box.json";
+  const std::string dir = testing::TempDir() + "tem_threads_opt_" + std::to_string(getpid());
+  const TemRun negative = run_tem("run '" + scene + "' --out '" + dir + "' --threads -1");
+  EXPECT_EQ(negative.status, 2);
+  EXPECT_TRUE(contains(negative.err, "--threads: must be 0 (one thread per core) or a number of "
+                                     "threads, got -1"))
+      << negative.err;
+  EXPECT_LT(negative.err.size(), 200u) << negative.err;
+  const TemRun many = run_tem("run '" + scene + "' --out '" + dir + "' --threads 10000");
+  EXPECT_EQ(many.status, 0) << many.err;
+  EXPECT_TRUE(contains(many.err, "--threads 10000 is more than this machine's")) << many.err;
+  std::filesystem::remove_all(dir);
+}
+
 // A penalty scene whose time step is above the contact's stable limit runs, with a warning that
 // says so and what limit to use.
 TEST(Cli, RunWarnsOfAPenaltyTimeStepAboveItsLimit) {

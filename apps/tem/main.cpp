@@ -41,9 +41,25 @@ int run(int argc, char** argv) {
                 "Continue the run in --out from its last checkpoint (bit-identical results)");
   int threads = -1;
   run->add_option("--threads", threads,
-                  "Threads for the narrow phase (0: one per core; default 1, or OMP_NUM_THREADS); "
-                  "results are bit-identical with any number")
-      ->check(CLI::NonNegativeNumber);
+                  "Threads that share each step (contact detection, the contact solve, "
+                  "integration; 0: one per core; default 1, or OMP_NUM_THREADS); results are "
+                  "bit-identical with any number")
+      ->check(CLI::Validator(
+          [](const std::string& text) -> std::string {
+            // CLI11's own range check prints its bounds as 300-digit numbers.
+            int n = -1;
+            try {
+              std::size_t used = 0;
+              n = std::stoi(text, &used);
+              if (used != text.size()) n = -1;
+            } catch (const std::exception&) {
+              n = -1;
+            }
+            if (n < 0)
+              return "must be 0 (one thread per core) or a number of threads, got " + text;
+            return "";
+          },
+          "INT >= 0"));
   bool with_hash = false;
   run->add_flag("--hash", with_hash, "Print 'hash: <hex>' of the final state as the last line");
 

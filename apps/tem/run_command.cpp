@@ -113,7 +113,14 @@ int run_command(const std::string& scene_file, const std::string& out_dir, bool 
   // One thread unless asked: several `tem run` side by side (a parameter sweep, ctest -j) each
   // spinning up a thread per core would fight over the cores.
   if (threads < 0 && !std::getenv("OMP_NUM_THREADS")) threads = 1;
-  if (threads == 0) threads = static_cast<int>(std::thread::hardware_concurrency());
+  const int cores = static_cast<int>(std::thread::hardware_concurrency());
+  if (threads == 0) threads = cores;
+  if (cores > 0 && threads > cores) {
+    // More would only take turns on the cores, and each would still be started and waited on.
+    std::cerr << "tem run: warning: --threads " << threads << " is more than this machine's "
+              << cores << " cores; using " << cores << " (the results are the same)\n";
+    threads = cores;
+  }
   set_threads(threads);
   // The run goes through the public API: `tem run` is a client of tem::Simulation like any
   // other program. A scene's problems come back one per line, as load_model prints them.
@@ -142,7 +149,15 @@ int run_command(const std::string& scene_file, const std::string& out_dir, bool 
 
   StopOnSignal stop;
   try {
-    if (!resume) sim.record(out_dir, contacts);
+    if (!resume) {
+      const std::vector<std::string> removed = sim.record(out_dir, contacts);
+      if (!removed.empty()) {
+        std::cerr << "tem run: removed an earlier run's files from " << out_dir << "/ that this run "
+                  << "does not write again:";
+        for (size_t i = 0; i < removed.size(); ++i) std::cerr << (i ? ", " : " ") << removed[i];
+        std::cerr << "\n";
+      }
+    }
     const long long first_step = sim.step_count();
     Progress progress(static_cast<double>(total_steps) * sim.time_step(), first_step);
     const auto start = std::chrono::steady_clock::now();
@@ -178,7 +193,9 @@ int run_command(const std::string& scene_file, const std::string& out_dir, bool 
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     print_summary(model, sim.impl().state, sim.impl().workspace, wall);
     std::cerr << "tem run: results in " << out_dir << "/ (bodies.csv, energy.csv"
-              << (contacts ? ", contacts.csv" : "") << ", scene.json, checkpoint.bin"
+              << (contacts ? ", contacts.csv" : "")
+              << (model.bodies_come_and_go ? ", removed.csv" : "")
+              << (model.scene.sensors.empty() ? "" : ", sensors.csv") << ", scene.json, checkpoint.bin"
               << (model.scene.output.paraview ? ", tem.pvd and paraview/ for ParaView" : "")
               << ")\n";
     if (hash) std::cout << "hash: " << sim.state_hash_hex() << std::endl;

@@ -150,7 +150,10 @@ class Simulation {
   // Writes `tem run`'s files into `directory` (bodies.csv, energy.csv, scene.json; with
   // `contacts` contacts.csv; ParaView files when the scene asks) from the current state on: a
   // row now, then every output interval, and finish_recording() writes the last state's row.
-  void record(const std::string& directory, bool contacts = false);
+  // An earlier run's files in `directory` that this run would not write again (contacts.csv,
+  // removed.csv, sensors.csv, ParaView frames; only files TEM wrote, known by name and header)
+  // are removed, and its checkpoint.bin; returns the names of the former, for a message.
+  std::vector<std::string> record(const std::string& directory, bool contacts = false);
   // Continues a run that `tem run` or record() left in `directory` from its checkpoint.bin:
   // the files are cut back to that point and appended to. Throws std::runtime_error when the
   // checkpoint belongs to another scene or run.

@@ -373,9 +373,11 @@ std::string Simulation::state_hash_hex() const { return hash_hex(state_hash()); 
 
 // --- files ---------------------------------------------------------------------------------
 
-void Simulation::record(const std::string& directory, bool contacts) {
-  impl_->start_recording(directory,
-                         std::make_unique<RunOutput>(directory, impl_->model, contacts));
+std::vector<std::string> Simulation::record(const std::string& directory, bool contacts) {
+  auto output = std::make_unique<RunOutput>(directory, impl_->model, contacts);
+  std::vector<std::string> removed = output->earlier_files_removed();
+  impl_->start_recording(directory, std::move(output));
+  return removed;
 }
 
 bool Simulation::recording() const { return impl_->output != nullptr; }

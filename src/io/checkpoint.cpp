@@ -263,6 +263,15 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   if (error) throw std::runtime_error(path + ": cannot be replaced: " + error.message());
 }
 
+bool is_checkpoint_file(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return false;
+  std::ifstream file(path, std::ios::binary);
+  char magic[sizeof kMagic] = {};
+  file.read(magic, sizeof magic);
+  return file && std::memcmp(magic, kMagic, sizeof kMagic) == 0;
+}
+
 Checkpoint read_checkpoint(const std::string& path) {
   std::error_code error;
   if (std::filesystem::is_directory(path, error))

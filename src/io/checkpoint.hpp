@@ -83,6 +83,9 @@ void restore_memory(const Checkpoint& checkpoint, ContactForces& forces,
 // Writes atomically (temporary file, then rename). Throws std::runtime_error naming the file.
 void write_checkpoint(const std::string& path, const Checkpoint& checkpoint);
 
+// Whether `path` is a file that starts as a TEM checkpoint does (its magic string).
+bool is_checkpoint_file(const std::string& path);
+
 // Reads and verifies a checkpoint. Throws std::runtime_error that says what is wrong (missing,
 // truncated, corrupted, another version).
 Checkpoint read_checkpoint(const std::string& path);

@@ -144,6 +144,31 @@ ParaviewOutput::ParaviewOutput(const std::string& directory, const Model& /*mode
   write_collection();
 }
 
+std::vector<std::string> ParaviewOutput::remove_collection(const std::string& directory) {
+  std::vector<std::string> removed;
+  std::error_code error;
+  const std::string pvd = directory + "/tem.pvd";
+  {
+    std::ifstream file(pvd);
+    std::string first, second;
+    std::getline(file, first);
+    std::getline(file, second);
+    if (first == "<?xml version=\"1.0\"?>" &&
+        second.rfind("<VTKFile type=\"Collection\"", 0) == 0) {
+      file.close();
+      if (fs::remove(pvd, error)) removed.push_back("tem.pvd");
+    }
+  }
+  const std::string frames_dir = directory + "/paraview";
+  if (!fs::is_directory(frames_dir, error)) return removed;
+  long long frames = 0;
+  for (const fs::directory_entry& entry : fs::directory_iterator(frames_dir, error))
+    if (frame_step(entry.path().string()) && fs::remove(entry.path(), error)) ++frames;
+  if (frames > 0) removed.push_back("paraview/ (" + std::to_string(frames) + " frame files)");
+  if (fs::is_empty(frames_dir, error)) fs::remove(frames_dir, error);
+  return removed;
+}
+
 void ParaviewOutput::write(const Model& model, const State& state, const Workspace& workspace) {
   const bool replaces = !frames_.empty() && frames_.back().step >= state.step;
   while (!frames_.empty() && frames_.back().step >= state.step) frames_.pop_back();

@@ -28,6 +28,12 @@ class ParaviewOutput {
   ParaviewOutput(const std::string& directory, const Model& model,
                  std::optional<long long> resume_step);
 
+  // Removes an earlier run's ParaView files from `directory`: its frame files in paraview/
+  // (named as this class names them), paraview/ itself once empty, and tem.pvd when it is a
+  // collection as write_collection() writes it. Returns what it removed, for a message (empty
+  // when there was nothing).
+  static std::vector<std::string> remove_collection(const std::string& directory);
+
   // One frame at state.step and state.time: the bodies at `state`, and the patches and patch
   // forces of the step that starts from it (as bodies.csv and contacts.csv). A frame of a step
   // already listed replaces it, and drops the frames after it.

@@ -33,6 +33,24 @@ void open(std::ofstream& file, const std::string& path, const char* header,
   file << header << '\n' << std::flush;
 }
 
+constexpr const char* kBodiesHeader = "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz";
+constexpr const char* kEnergyHeader = "time,kinetic,potential,total,contacts,max_depth";
+constexpr const char* kRemovedHeader = "time,body,x,y,z,vx,vy,vz,mass";
+constexpr const char* kSensorsHeader = "time,sensor,count,mass,fx,fy,fz,tx,ty,tz";
+
+// Removes `directory/name` if its first line is `header` (a file TEM wrote); true if removed.
+bool remove_if_written_by_tem(const std::string& directory, const std::string& name,
+                              const char* header) {
+  const std::string path = directory + "/" + name;
+  std::string first;
+  {
+    std::ifstream file(path);
+    if (!file || !std::getline(file, first) || first != header) return false;
+  }
+  std::error_code error;
+  return std::filesystem::remove(path, error);
+}
+
 }  // namespace
 
 Quat attitude_quaternion(const Mat3& g) {
@@ -58,24 +76,38 @@ RunOutput::RunOutput(const std::string& directory, const Model& model, bool cont
   std::error_code error;
   std::filesystem::create_directories(directory, error);
   if (error) throw std::runtime_error(directory + ": cannot be created: " + error.message());
+  with_removed_ = model.bodies_come_and_go;
+  with_sensors_ = !model.scene.sensors.empty();
+  if (!resume) {
+    // A new run into a directory that holds an earlier run's files: those this run does not
+    // write again go, so that no file in the directory is older than the run.
+    const auto stale = [&](bool written, const std::string& name, const char* header) {
+      if (!written && remove_if_written_by_tem(directory, name, header))
+        earlier_removed_.push_back(name);
+    };
+    stale(contacts, "contacts.csv", kContactsCsvHeader);
+    stale(with_removed_, "removed.csv", kRemovedHeader);
+    stale(with_sensors_, "sensors.csv", kSensorsHeader);
+    // The earlier checkpoint too: until this run writes its own, --resume would continue it
+    // over this run's files. Not listed: the run writes checkpoint.bin again.
+    const std::string checkpoint_file = directory + "/checkpoint.bin";
+    if (is_checkpoint_file(checkpoint_file)) std::filesystem::remove(checkpoint_file, error);
+    if (!model.scene.output.paraview)
+      for (std::string& name : ParaviewOutput::remove_collection(directory))
+        earlier_removed_.push_back(std::move(name));
+  }
   std::string message;
   if (!write_scene_file(model.scene, directory + "/scene.json", &message))
     throw std::runtime_error(message);
-  open(bodies_, directory + "/bodies.csv", "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz",
-       resume ? resume->bodies : -1);
-  open(energy_, directory + "/energy.csv", "time,kinetic,potential,total,contacts,max_depth",
-       resume ? resume->energy : -1);
+  open(bodies_, directory + "/bodies.csv", kBodiesHeader, resume ? resume->bodies : -1);
+  open(energy_, directory + "/energy.csv", kEnergyHeader, resume ? resume->energy : -1);
   if (contacts)
     open(contacts_, directory + "/contacts.csv", kContactsCsvHeader,
          resume ? resume->contacts : -1);
-  with_removed_ = model.bodies_come_and_go;
   if (with_removed_)
-    open(removed_, directory + "/removed.csv", "time,body,x,y,z,vx,vy,vz,mass",
-         resume ? resume->removed : -1);
-  with_sensors_ = !model.scene.sensors.empty();
+    open(removed_, directory + "/removed.csv", kRemovedHeader, resume ? resume->removed : -1);
   if (with_sensors_)
-    open(sensors_, directory + "/sensors.csv", "time,sensor,count,mass,fx,fy,fz,tx,ty,tz",
-         resume ? resume->sensors : -1);
+    open(sensors_, directory + "/sensors.csv", kSensorsHeader, resume ? resume->sensors : -1);
   if (model.scene.output.paraview)
     // The frame of the checkpoint's step is written again by the resumed run.
     paraview_ = std::make_unique<ParaviewOutput>(

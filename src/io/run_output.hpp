@@ -6,6 +6,7 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "io/checkpoint.hpp"
 #include "io/paraview_output.hpp"
@@ -34,6 +35,13 @@ class RunOutput {
   // How long the files are now (what a checkpoint records).
   OutputSizes sizes();
 
+  // The files of an earlier run that a new (not resumed) run removed from the directory because
+  // it does not write them again (contacts.csv, removed.csv, sensors.csv, ParaView frames):
+  // left there, they would pass for this run's. Only files TEM writes, recognised by name and
+  // by their header, are removed. (An earlier checkpoint.bin is removed too, unlisted: the run
+  // writes its own.)
+  const std::vector<std::string>& earlier_files_removed() const { return earlier_removed_; }
+
   // The ParaView collection (output.paraview), or null.
   ParaviewOutput* paraview() { return paraview_.get(); }
 
@@ -42,6 +50,7 @@ class RunOutput {
   bool with_contacts_;
   bool with_removed_ = false, with_sensors_ = false;
   std::unique_ptr<ParaviewOutput> paraview_;  // with output.paraview
+  std::vector<std::string> earlier_removed_;
 };
 
 // Attitude quaternion (w >= 0) of the rotation nearest to g: g itself in the default mode; in
