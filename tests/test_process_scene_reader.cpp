@@ -504,6 +504,19 @@ TEST(ProcessSceneReader, InletRegionIsABoxInsideTheContainer) {
                  "inlets[0].region.max", {"must exceed min", "y"});
 }
 
+// A fill's region is held to the container as an inlet's is: copies placed outside it would be
+// shoved in by the overlap correction, with a flood of overlap warnings.
+TEST(ProcessSceneReader, FillRegionIsInsideTheContainer) {
+  const auto with_fill = [](const std::string& container) {
+    return R"({"container": )" + container +
+           R"(, "fill": [{"name": "g", "count": 4, "region": {"min": [0, 0, 0], "max": [4, 4, 4]},)"
+           R"( "body": {"shape": {"type": "box", "size": [0.5, 0.5, 0.5]}}}]})";
+  };
+  expect_problem(with_fill(R"({"min": [-1, -1, 1], "max": [5, 5, 5]})"), "fill[0].region",
+                 {"must lie inside the container", "along z", "[0, 4]", "[1, 5]"});
+  EXPECT_TRUE(read_text(with_fill(R"({"min": [0, 0, 0], "max": [4, 4, 4]})")).ok());
+}
+
 TEST(ProcessSceneReader, InletBodyKeysThatGoOnTheInlet) {
   expect_problem(with_inlet("", R"({"shape": )" + kBox + R"(, "velocity": [0, 0, -1]})"),
                  "inlets[0].body", {"unknown key 'velocity'", "goes on the inlet"});

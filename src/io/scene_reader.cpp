@@ -185,7 +185,7 @@ class SceneReader {
     }
     if (const Json* j = Reader::get(root, "walls")) read_walls(*j, "walls", &scene->walls);
     const Json* fill = Reader::get(root, "fill");
-    if (fill) read_fills(*fill, "fill", &scene->fill);
+    if (fill) read_fills(*fill, "fill", scene);
     // Bodies may come from fills alone, but a scene needs some: an empty `fill` list makes
     // none, so `bodies` is then required (the fuzzer found such a scene accepted, and written
     // back as one that is not).
@@ -460,7 +460,8 @@ class SceneReader {
     return name_ok;
   }
 
-  void read_fills(const Json& j, const std::string& path, std::vector<FillDef>* fills) {
+  void read_fills(const Json& j, const std::string& path, SceneDef* scene) {
+    std::vector<FillDef>* fills = &scene->fill;
     if (!j.is_array()) {
       r_.fail(path, "must be a list of fills ({\"name\", \"count\", \"region\", \"body\"}), got " +
                         describe(j));
@@ -476,9 +477,13 @@ class SceneReader {
         if (!read_name(*n, fpath, &fill.name)) p_.body_names_incomplete();
       }
       r_.read_int(j[i], fpath, "count", &fill.count, 1, kMaxFillCount, true);
-      if (const Json* region = r_.need(j[i], fpath, "region"))
-        scene_io::read_box(r_, *region, child(fpath, "region"), &fill.region_min, &fill.region_max,
-                           kRegionKeys);
+      if (const Json* region = r_.need(j[i], fpath, "region")) {
+        const std::string rpath = child(fpath, "region");
+        if (scene_io::read_box(r_, *region, rpath, &fill.region_min, &fill.region_max,
+                               kRegionKeys) &&
+            scene->container)
+          check_inside_container({fill.region_min, fill.region_max}, *scene->container, rpath);
+      }
       int seed = 1;
       if (r_.read_int(j[i], fpath, "seed", &seed, 0, std::numeric_limits<int>::max()))
         fill.seed = static_cast<std::uint64_t>(seed);
@@ -582,7 +587,8 @@ class SceneReader {
     read_template_material_and_scale(j, body);
   }
 
-  // An inlet places its copies inside its region; with a container, that must be inside too.
+  // A fill or an inlet places its copies inside its region; with a container, that must be
+  // inside too (copies placed outside would be shoved in by the overlap correction).
   void check_inside_container(const RegionDef& region, const ContainerDef& container,
                               const std::string& path) {
     static constexpr const char* kAxisNames[] = {"x", "y", "z"};
