@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -60,6 +61,18 @@ void PySimulation::step(long long n) {
 void PySimulation::step_unrefreshed(long long n) {
   if (n < 0) throw py::value_error("step: n must be 0 or more, got " + std::to_string(n));
   tem::Simulation& sim = get();
+  // Past the scene's duration the steps go on (a program may step as long as it needs), but not
+  // without a word: `tem run` stops there, and a step(10**12) is a mistake worth a warning
+  // before it starts (Ctrl-C stops it).
+  if (n > 0 && sim.step_count() + n > sim.total_steps()) {
+    std::ostringstream message;
+    message << "step(" << n << ") goes past the scene's duration (" << sim.total_steps()
+            << " steps; now at step " << sim.step_count() << ", to end at t = "
+            << static_cast<double>(sim.step_count() + n) * sim.time_step()
+            << " s): tem run stops at the duration; the steps go on here";
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, message.str().c_str(), 1) != 0)
+      throw py::error_already_set();
+  }
   // Declared before the release, so cleared after the GIL is taken back.
   struct Stepping {
     bool& flag;

@@ -187,6 +187,17 @@ One Simulation is used from one thread at a time.
           },
           "Warnings about accepted defects of the scene (list of str).")
       .def(
+          "inlet_deliveries",
+          [](PySimulation& s) {
+            py::list out;
+            for (const tem::Simulation::InletDelivery& d : s.raw().inlet_deliveries())
+              out.append(py::dict(py::arg("name") = d.name, py::arg("placed") = d.placed,
+                                  py::arg("due") = d.due, py::arg("count") = d.count));
+            return out;
+          },
+          "Per inlet, in the scene's order: a dict of its name, the copies it has placed, those "
+          "due by now and its count.")
+      .def(
           "body_index",
           [](PySimulation& s, const std::string& name) {
             const int i = s.raw().body_index(name);

@@ -19,6 +19,7 @@
 #include "support/simulate.hpp"
 #include "support/tem_process.hpp"
 #include "support/vtu_reader.hpp"
+#include "tem/simulation.hpp"
 
 namespace tem {
 namespace test_mesh_scenes {
@@ -182,6 +183,28 @@ TEST(MeshScene, ExactBodyHasTheMeshsMassProperties) {
   // (and y); about z, 3^5/6 less 3 (1 + 1)/12.
   EXPECT_NEAR(body.inertia.inertia(0, 0), 243.0 / 6 - 3.0 * 10 / 12, 1e-9);
   EXPECT_NEAR(body.inertia.inertia(2, 2), 243.0 / 6 - 3.0 * 2 / 12, 1e-9);
+  std::filesystem::remove_all(dir);
+}
+
+// An inlet's template may be a mesh, read relative to the scene file like a body's: its copies
+// come in with the mesh's volume (24 for the holed cube, density 2: mass 48).
+TEST(MeshScene, InletCopiesOfAMesh) {
+  const std::string dir = temp_path("mesh_inlet");
+  std::filesystem::create_directories(dir);
+  testing_support::write_off(testing_support::holed_cube_mesh(), dir + "/holed.off");
+  std::ofstream(dir + "/scene.json") << R"({"time_step": 1e-3, "duration": 0.05,
+    "container": {"min": [-20, -20, 0], "max": [20, 20, 40]},
+    "inlets": [{"name": "feed", "region": {"min": [-15, -15, 5], "max": [15, 15, 35]},
+                "rate": 100, "count": 3,
+                "body": {"shape": {"type": "mesh", "file": "holed.off", "blocks": "exact"},
+                         "density": 2}}]})";
+  Simulation sim = Simulation::load(dir + "/scene.json");
+  sim.step(50);
+  ASSERT_EQ(sim.body_count(), 3);
+  for (int b = 0; b < 3; ++b) {
+    EXPECT_NEAR(sim.volume(b), 24.0, 24.0 * 1e-12);
+    EXPECT_NEAR(sim.mass(b), 48.0, 48.0 * 1e-12);
+  }
   std::filesystem::remove_all(dir);
 }
 

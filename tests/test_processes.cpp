@@ -4,9 +4,11 @@
 // resume and thread counts with bodies coming and going).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <set>
@@ -73,6 +75,31 @@ TEST(Processes, BlockOnABeltReachesTheBeltSpeedAfterVOverMuG) {
   EXPECT_NEAR(sim.energies().driven_work, m * v * v, 2e-3 * m * v * v);
 }
 
+// energy.csv's last column is the driven work, as the API has it: the belt's work on the block
+// reaches m v^2 by the end, and total - driven_work never rises from row to row.
+TEST(Processes, EnergyCsvCarriesTheDrivenWork) {
+  const std::string dir = temp_path("belt_energy");
+  const auto run = run_tem("run '" + scene_path("belt.json") + "' --out '" + dir + "'");
+  ASSERT_EQ(run.status, 0) << run.err;
+  const std::vector<std::string> rows = lines(slurp(dir + "/energy.csv"));
+  ASSERT_EQ(rows.front(), "time,kinetic,potential,total,contacts,max_depth,driven_work");
+  Simulation sim = Simulation::load(scene_path("belt.json"));
+  sim.step(sim.total_steps());
+  const Real m = sim.mass(sim.body_index("block")), v = 20;
+  Real previous = std::numeric_limits<Real>::infinity();
+  for (size_t i = 1; i < rows.size(); ++i) {
+    const auto f = fields(rows[i]);
+    ASSERT_EQ(f.size(), 7u);
+    const Real lost = std::stod(f[3]) - std::stod(f[6]);
+    EXPECT_LE(lost, previous + 1e-9 * m * v * v) << rows[i];
+    previous = lost;
+  }
+  const auto last = fields(rows.back());
+  EXPECT_EQ(std::stod(last[6]), sim.energies().driven_work);  // the same number, printed exactly
+  EXPECT_NEAR(std::stod(last[6]), m * v * v, 2e-3 * m * v * v);
+  std::filesystem::remove_all(dir);
+}
+
 // A block resting on a fixed plate: the plate's force sensor reads the block's weight, and the
 // torque about the world origin is that of the weight at the block's place.
 TEST(Processes, PlateForceSensorReadsTheWeightOfWhatRestsOnIt) {
@@ -136,6 +163,97 @@ TEST(Processes, ForceSensorByPrefixReadsTheWeightOfInletCopies) {
   }
   EXPECT_GE(checked, 3);
   std::filesystem::remove_all(dir);
+}
+
+// Inlets that would deliver less than they say are told of when the scene is loaded (tem check
+// and tem run print the same warnings), and the run reports what each placed of what it owed:
+// a region buried in a fixed body, a start after the run's end, a rate too slow for the count,
+// a region inside an outlet.
+TEST(Processes, InletsThatCannotDeliverAreToldOf) {
+  const std::string copy = R"("body": {"shape": {"type": "box", "size": [0.5, 0.5, 0.5]}}})";
+  Simulation sim = Simulation::from_json(R"({"time_step": 1e-3, "duration": 0.2,
+    "container": {"min": [-5, -5, 0], "max": [5, 5, 10]},
+    "bodies": [{"name": "rock", "shape": {"type": "box", "size": [4, 4, 4]},
+                "position": [0, 0, 5], "fixed": true}],
+    "outlets": [{"name": "bin", "region": {"min": [2.5, -5, 0.5], "max": [5, -2.5, 3]}}],
+    "inlets": [
+      {"name": "buried", "region": {"min": [-1.5, -1.5, 3.5], "max": [1.5, 1.5, 6.5]},
+       "rate": 100, "count": 5, )" + copy + R"(,
+      {"name": "late", "region": {"min": [3, 3, 1], "max": [4.5, 4.5, 2]}, "start": 0.5,
+       "rate": 100, "count": 5, )" + copy + R"(,
+      {"name": "slow", "region": {"min": [-4.5, -4.5, 1], "max": [-3, -3, 2]},
+       "rate": 10, "count": 5, )" + copy + R"(,
+      {"name": "drain", "region": {"min": [3, -4.5, 1], "max": [4.5, -3, 2]},
+       "rate": 100, "count": 5, )" + copy + R"(,
+      {"name": "fine", "region": {"min": [-4.5, 3, 1], "max": [-3, 4.5, 2]},
+       "rate": 100, "count": 5, )" + copy + "]}");
+  const std::vector<std::string>& w = sim.warnings();
+  ASSERT_EQ(w.size(), 4u);
+  const auto has = [](const std::string& s, const std::string& part) {
+    return s.find(part) != std::string::npos;
+  };
+  EXPECT_TRUE(has(w[0], "inlets[0].region: none of 216 places") && has(w[0], "fixed 'rock'")) << w[0];
+  EXPECT_TRUE(has(w[1], "inlets[1].start: 0.5 s is after the run's end")) << w[1];
+  EXPECT_TRUE(has(w[2], "inlets[2]: only 3 of its 5 copies fall due")) << w[2];
+  EXPECT_TRUE(has(w[3], "inlets[3].region: every copy is inside outlets[0].region")) << w[3];
+  sim.step(200);
+  const auto d = sim.inlet_deliveries();
+  ASSERT_EQ(d.size(), 5u);
+  const std::vector<std::array<long long, 3>> expected = {
+      {0, 5, 5}, {0, 0, 5}, {3, 3, 5}, {5, 5, 5}, {5, 5, 5}};  // placed, due, count
+  for (size_t j = 0; j < d.size(); ++j)
+    EXPECT_EQ((std::array<long long, 3>{d[j].placed, d[j].due, d[j].count}), expected[j]) << d[j].name;
+  // What drains leaves at once: of the 13 copies placed, the 5 of "drain" are gone.
+  EXPECT_EQ(sim.body_count(), 1 + 3 + 5);
+}
+
+// Inlets whose bodies do not fit in memory: the load fails with how many bodies, how much memory
+// and which keys, not a bare std::bad_alloc. The memory is limited with `ulimit -v`, which
+// AddressSanitizer's own reservations of address space do not survive.
+TEST(Processes, InletsThatDoNotFitInMemorySaySo) {
+#ifdef __SANITIZE_ADDRESS__
+  GTEST_SKIP() << "AddressSanitizer needs more address space than the limit leaves";
+#endif
+  const std::string dir = temp_path("inlet_memory");
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/scene.json") << R"({"time_step": 1e-3, "duration": 0.01,
+    "inlets": [{"name": "feed", "region": {"min": [0, 0, 0], "max": [4, 4, 4]},
+                "rate": 100, "count": 10000000,
+                "body": {"shape": {"type": "box", "size": [1, 1, 1]}}}]})";
+  const std::string command = "ulimit -v 1000000; '" + std::string(TEM_BINARY) + "' run '" + dir +
+                              "/scene.json' --out '" + dir + "/out' 2>'" + dir + "/err'";
+  const int status = std::system(command.c_str());
+  EXPECT_NE(status, 0);
+  const std::string err = slurp(dir + "/err");
+  EXPECT_NE(err.find("must hold up to 10000000 bodies at once (0 at the start, inlets[0].count "
+                     "10000000)"),
+            std::string::npos)
+      << err;
+  EXPECT_NE(err.find("GB for their records alone"), std::string::npos) << err;
+  EXPECT_EQ(err.find("bad_alloc"), std::string::npos) << err;
+  std::filesystem::remove_all(dir);
+}
+
+// A prescribed motion too fast for a double to hold the energy it gives (amplitude 1e200 cm at
+// 25 Hz) is refused naming the motion, not run until the grain it hits stops being finite.
+TEST(Processes, MotionBeyondTheRangeOfADoubleIsRefused) {
+  const auto scene = [](const std::string& amplitude) {
+    return R"({"time_step": 1e-3, "duration": 0.01,
+      "bodies": [{"name": "plate", "shape": {"type": "box", "size": [4, 4, 1]},
+                  "position": [0, 0, 0], "motion": {"oscillation": {"amplitude": [0, 0, )" +
+           amplitude + R"(], "frequency": 25}}},
+                 {"name": "grain", "shape": {"type": "box", "size": [1, 1, 1]},
+                  "position": [0, 0, 1.1]}]})";
+  };
+  try {
+    Simulation::from_json(scene("1e200"));
+    ADD_FAILURE() << "accepted";
+  } catch (const SceneLoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("bodies[0].motion: moves at up to 1.5708e+202"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_NO_THROW(Simulation::from_json(scene("0.1")));
 }
 
 // A gate removed at a time: the grains resting on it fall freely from that moment.

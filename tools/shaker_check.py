@@ -11,7 +11,8 @@ Running (with --run, or when RUN_DIR has no bodies.csv; RUN_DIR defaults to /tmp
   step the energies are read, so RUN_DIR/driven_energy.csv gets `step,time,total,driven_work`
   (total: kinetic + potential of the free bodies; driven_work: the work the plate has done on
   them since the start); without --python, `TEM run SCENE --out RUN_DIR --threads 1`
-  (energy.csv has no driven work, so the energy check is skipped). --duration shortens the
+  (energy.csv's driven_work is per output row, not per step, so the step-by-step energy check
+  is skipped). --duration shortens the
   Python run (the energy check step by step costs as much as the run).
 
 Reports, from RUN_DIR's scene.json and bodies.csv (and driven_energy.csv when present):

@@ -192,6 +192,13 @@ int run_command(const std::string& scene_file, const std::string& out_dir, bool 
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     print_summary(model, sim.impl().state, sim.impl().workspace, wall);
+    for (const Simulation::InletDelivery& d : sim.inlet_deliveries())
+      std::cerr << "  inlet '" << d.name << "': placed " << d.placed << " of the " << d.due
+                << " copies due by t = " << sim.time() << " s (" << d.count << " in all)"
+                << (d.placed < d.due ? "; " + std::to_string(d.due - d.placed) +
+                                           " found no room in its region yet"
+                                     : std::string())
+                << "\n";
     std::cerr << "tem run: results in " << out_dir << "/ (bodies.csv, energy.csv"
               << (contacts ? ", contacts.csv" : "")
               << (model.bodies_come_and_go ? ", removed.csv" : "")

@@ -91,6 +91,15 @@ class Simulation {
   // a call, OpenMP's default, OMP_NUM_THREADS or one per core).
   static void set_threads(int threads);
 
+  // --- inlets (docs/processes.md) ---------------------------------------------------------
+  // Per inlet, in the scene's order: the copies it has placed, those that had fallen due by
+  // now (a copy finds no room: it waits, and is late), and its count.
+  struct InletDelivery {
+    std::string name;
+    long long placed = 0, due = 0, count = 0;
+  };
+  std::vector<InletDelivery> inlet_deliveries() const;
+
   // --- bodies ---------------------------------------------------------------------------
   int body_count() const;
   // The most bodies this run can hold at once (those at the start and every inlet's count):

@@ -121,3 +121,37 @@ def test_warnings_are_tem_checks():
     assert result.returncode == 0
     assert [f"{path}: warning: {w}" for w in sim.warnings] == result.stderr.strip().splitlines()
     assert len(sim.warnings) == 2 and "overlap" in sim.warnings[0]
+
+
+def test_stepping_past_the_duration_warns_before_it_starts():
+    sim = tem.Simulation.from_dict({
+        "time_step": 1e-3, "duration": 0.01,
+        "bodies": [{"name": "a", "shape": {"type": "box", "size": [1, 1, 1]},
+                    "position": [0, 0, 0]}]})
+    assert sim.total_steps == 10
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        sim.step(10)  # up to the duration: no warning
+    with pytest.warns(RuntimeWarning, match=r"step\(5\) goes past the scene's duration "
+                                            r"\(10 steps; now at step 10"):
+        sim.step(5)
+    assert sim.step_count == 15  # the steps go on, as a program may need
+    # Warnings made errors: the call is refused before any step is taken.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(RuntimeWarning, match=r"step\(1000000000000\)"):
+            sim.step(10**12)
+    assert sim.step_count == 15
+
+
+def test_record_returns_the_earlier_runs_files_it_removed(tmp_path):
+    box = scene_path("tests/scenes/drop_box.json")
+    first = tem.Simulation(box)
+    assert first.record(tmp_path / "out", contacts=True) == []
+    first.step(10)
+    first.finish_recording()
+    second = tem.Simulation(box)
+    assert second.record(tmp_path / "out") == ["contacts.csv"]
+    second.finish_recording()
+    assert not (tmp_path / "out" / "contacts.csv").exists()

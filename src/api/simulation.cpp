@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <thread>
 #include <stdexcept>
 
@@ -12,6 +14,7 @@
 #include "io/scene_reader.hpp"
 #include "io/scene_writer.hpp"
 #include "support/parallel.hpp"
+#include "world/inlet_delivery.hpp"
 #include "world/state_hash.hpp"
 
 namespace tem {
@@ -78,13 +81,28 @@ Simulation::Impl::Impl(Model m) : model(std::move(m)) {
 
 void Simulation::Impl::reserve_capacity() {
   const size_t capacity = population_capacity(model);
-  model.bodies.reserve(capacity);  // the mass, volume and inertia views point into it
-  state.bodies.reserve(capacity);
-  state.tags.reserve(capacity);
-  workspace.loads.force.reserve(capacity);
-  workspace.loads.torque.reserve(capacity);
-  quaternions.reserve(4 * capacity);
-  angular_velocities.reserve(3 * capacity);
+  try {
+    model.bodies.reserve(capacity);  // the mass, volume and inertia views point into it
+    state.bodies.reserve(capacity);
+    state.tags.reserve(capacity);
+    workspace.loads.force.reserve(capacity);
+    workspace.loads.torque.reserve(capacity);
+    quaternions.reserve(4 * capacity);
+    angular_velocities.reserve(3 * capacity);
+  } catch (const std::exception&) {  // std::bad_alloc, or std::length_error past max_size()
+    // Not a bare "std::bad_alloc": say how many bodies, how much memory and which keys.
+    const double per_body = sizeof(Body) + sizeof(BodyState) + sizeof(BodyTag) +
+                            2 * sizeof(Vec3) + 7 * sizeof(Real);
+    std::ostringstream m;
+    m << "the run must hold up to " << capacity << " bodies at once (" << model.bodies.size()
+      << " at the start";
+    for (const InletDef& inlet : model.scene.inlets)
+      m << ", " << inlet.path << ".count " << inlet.count;
+    m << "), about " << std::setprecision(3) << per_body * static_cast<double>(capacity) / 1e9
+      << " GB for their records alone, more than this machine can allocate; lower the inlets' "
+         "count";
+    throw std::runtime_error(m.str());
+  }
 }
 
 void Simulation::Impl::refresh_views() {
@@ -366,6 +384,17 @@ std::vector<Contact> Simulation::contacts() const {
 SystemEnergies Simulation::energies() const {
   const Energies e = system_energies(impl_->model, impl_->state);
   return {e.kinetic, e.potential, impl_->state.driven_work};
+}
+
+std::vector<Simulation::InletDelivery> Simulation::inlet_deliveries() const {
+  std::vector<InletDelivery> out;
+  const SceneDef& scene = impl_->model.scene;
+  for (size_t j = 0; j < scene.inlets.size(); ++j) {
+    const InletDef& inlet = scene.inlets[j];
+    out.push_back({inlet.name, impl_->state.inlets[j].placed, copies_due(inlet, impl_->state.time),
+                   inlet.count});
+  }
+  return out;
 }
 
 std::uint64_t Simulation::state_hash() const { return tem::state_hash(impl_->state); }

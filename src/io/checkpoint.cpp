@@ -25,7 +25,7 @@ constexpr char kMagic[8] = {'T', 'E', 'M', 'C', 'K', 'P', 'T', '\n'};
 // read, with an empty cache: the first resumed step searches every pair.
 // 5: each cached feature's node past the rim (CachedFeatures::beyond_rim), after the features.
 // Version 4 is still read, with none past the rim: such pairs are searched again.
-// 6: the files the scene read and their content hashes (ReadFile), after the fingerprint.
+// 6: the files the scene read and their content hashes (ReadFile), after the pair cache.
 // Version 5 is still read, with no files to compare.
 constexpr std::uint32_t kVersion = 6;
 constexpr std::uint32_t kOldestVersion = 2;
@@ -217,12 +217,6 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   w.bytes().assign(kMagic, sizeof kMagic);
   w.value(kVersion);
   w.value(c.scene_fingerprint);
-  w.value(static_cast<std::uint64_t>(c.files.size()));
-  for (const ReadFile& f : c.files) {
-    w.value(static_cast<std::uint64_t>(f.path.size()));
-    w.bytes().append(f.path);
-    w.value(f.content_hash);
-  }
   w.value(c.sizes.bodies);
   w.value(c.sizes.energy);
   w.value(c.sizes.contacts);
@@ -249,6 +243,12 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   write_records(w, c.features);
   w.value(static_cast<std::uint64_t>(c.features.size()));
   for (const CachedFeatures& e : c.features) w.value(e.beyond_rim);
+  w.value(static_cast<std::uint64_t>(c.files.size()));
+  for (const ReadFile& f : c.files) {
+    w.value(static_cast<std::uint64_t>(f.path.size()));
+    w.bytes().append(f.path);
+    w.value(f.content_hash);
+  }
   w.value(fnv1a(w.bytes().data(), w.bytes().size()));
 
   const std::string temporary = path + ".tmp";
@@ -299,13 +299,6 @@ Checkpoint read_checkpoint(const std::string& path) {
 
   Checkpoint c;
   c.scene_fingerprint = r.value<std::uint64_t>();
-  if (version >= 6) {
-    c.files.resize(r.count(2 * sizeof(std::uint64_t)));
-    for (ReadFile& f : c.files) {
-      f.path = r.text(r.count(1));
-      r.value(f.content_hash);
-    }
-  }
   c.sizes.bodies = r.value<std::int64_t>();
   c.sizes.energy = r.value<std::int64_t>();
   c.sizes.contacts = r.value<std::int64_t>();
@@ -346,6 +339,13 @@ Checkpoint read_checkpoint(const std::string& path) {
       r.value(e.beyond_rim);
       if (!(e.beyond_rim >= 0))
         throw std::runtime_error(path + ": the checkpoint's pair cache holds a negative depth");
+    }
+  }
+  if (version >= 6) {
+    c.files.resize(r.count(2 * sizeof(std::uint64_t)));
+    for (ReadFile& f : c.files) {
+      f.path = r.text(r.count(1));
+      r.value(f.content_hash);
     }
   }
   if (!r.at_end()) throw std::runtime_error(path + ": the checkpoint has trailing bytes");

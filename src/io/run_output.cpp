@@ -34,7 +34,10 @@ void open(std::ofstream& file, const std::string& path, const char* header,
 }
 
 constexpr const char* kBodiesHeader = "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz";
-constexpr const char* kEnergyHeader = "time,kinetic,potential,total,contacts,max_depth";
+// driven_work (the work of bodies with a prescribed motion on the others) came last, after the
+// columns readers already relied on.
+constexpr const char* kEnergyHeader =
+    "time,kinetic,potential,total,contacts,max_depth,driven_work";
 constexpr const char* kRemovedHeader = "time,body,x,y,z,vx,vy,vz,mass";
 constexpr const char* kSensorsHeader = "time,sensor,count,mass,fx,fy,fz,tx,ty,tz";
 
@@ -141,6 +144,7 @@ void RunOutput::write(const Model& model, const State& state, const Workspace& w
   append_field(rows, e.total());
   rows += ',' + std::to_string(workspace.patches.size());
   append_field(rows, max_depth);
+  append_field(rows, state.driven_work);
   rows += '\n';
   energy_ << rows << std::flush;
 

@@ -15,7 +15,7 @@ namespace {
 
 using json::child;
 
-// Every mesh shape of the scene (bodies, fill templates, parts of compounds), with its file
+// Every mesh shape of the scene (bodies, fill and inlet templates, parts of compounds), with its file
 // resolved against the scene file's directory, read, checked and cut (mesh_body.hpp).
 void load_mesh_shape(ShapeDef& shape, const std::filesystem::path& base,
                      std::vector<SceneProblem>& problems) {
@@ -42,6 +42,7 @@ void load_scene_meshes(SceneReadResult& result) {
   const std::filesystem::path base = std::filesystem::path(scene.source).parent_path();
   for (BodyDef& body : scene.bodies) load_mesh_shape(body.shape, base, result.problems);
   for (FillDef& fill : scene.fill) load_mesh_shape(fill.body.shape, base, result.problems);
+  for (InletDef& inlet : scene.inlets) load_mesh_shape(inlet.body.shape, base, result.problems);
 }
 
 SceneReadResult read_scene_file(const std::string& filename) {

@@ -818,6 +818,25 @@ Mat3 rotation_from_quaternion(Real w, Real x, Real y, Real z) {
   return Quat(w, x, y, z).normalized().toRotationMatrix();
 }
 
+namespace {
+
+// The name of a text encoding other than UTF-8 that `text` is in, told by its byte order mark or
+// by NUL bytes (which UTF-8 JSON never holds; UTF-16 and UTF-32 text of ASCII characters does),
+// or nullopt. Without this, JSON's parser reports "invalid literal" at the first byte.
+std::optional<std::string> wide_encoding(const std::string& text) {
+  const auto starts = [&](std::string_view bom) { return text.compare(0, bom.size(), bom) == 0; };
+  using namespace std::string_view_literals;
+  if (starts("\x00\x00\xFE\xFF"sv)) return "UTF-32 text (big-endian byte order mark)";
+  if (starts("\xFF\xFE\x00\x00"sv)) return "UTF-32 text (little-endian byte order mark)";
+  if (starts("\xFE\xFF"sv)) return "UTF-16 text (big-endian byte order mark FE FF)";
+  if (starts("\xFF\xFE"sv)) return "UTF-16 text (little-endian byte order mark FF FE)";
+  if (text.find('\0') != std::string::npos)
+    return "not UTF-8 text: it holds NUL bytes, as UTF-16 or UTF-32 text does";
+  return std::nullopt;
+}
+
+}  // namespace
+
 SceneReadResult read_scene_text(const std::string& text, const std::string& source_name) {
   SceneReadResult result;
   result.scene.source = source_name;
@@ -825,6 +844,11 @@ SceneReadResult read_scene_text(const std::string& text, const std::string& sour
   try {
     if (json::blank(text)) {
       problems.push_back({"", "the file is empty (expected a JSON object: {...})"});
+      return result;
+    }
+    if (const auto encoding = wide_encoding(text)) {
+      problems.push_back({"", "the file is " + *encoding +
+                                  "; scene files are read as UTF-8 only: save it as UTF-8"});
       return result;
     }
     json::PathTracker tracker(into(&problems));

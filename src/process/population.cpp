@@ -7,6 +7,7 @@
 #include "dynamics/sleep.hpp"
 #include "process/motion.hpp"
 #include "world/fill.hpp"
+#include "world/inlet_delivery.hpp"
 #include "world/placement.hpp"
 
 namespace tem {
@@ -29,13 +30,6 @@ std::uint64_t splitmix64(std::uint64_t z) {
 Real draw(std::uint64_t seed, std::uint64_t stream, std::uint64_t counter) {
   const std::uint64_t z = splitmix64(splitmix64(splitmix64(seed) ^ stream) ^ counter);
   return static_cast<Real>(z >> 11) * 0x1.0p-53;
-}
-
-// Copies an inlet owes by time t: the first at `start`, then one every 1/rate.
-long long copies_due(const InletDef& inlet, Real t) {
-  if (t < inlet.start) return 0;
-  const Real due = std::floor((t - inlet.start) * inlet.rate * (1 + 1e-12)) + 1;
-  return std::min<long long>(inlet.count, static_cast<long long>(std::min<Real>(due, 1e18)));
 }
 
 Real copy_scale(const InletDef& inlet, long long copy) {

@@ -2,15 +2,19 @@
 // (eqs. 4-7 with the erratum of eq. 7), walls; and the initial State.
 #include "world/model.hpp"
 
+#include "world/inlet_delivery.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <set>
 #include <sstream>
 
 #include "geometry/shape_blocks.hpp"
 #include "mesh/mesh_body.hpp"
 #include "world/fill.hpp"
+#include "world/inlet_delivery.hpp"
 #include "mass/mass_properties.hpp"
 
 namespace tem {
@@ -177,6 +181,38 @@ Body build_body(const BodyDef& def, Model& model, Real scale) {
   return body;
 }
 
+namespace {
+
+// A prescribed motion so fast that a body it pushes would carry a kinetic energy beyond the range
+// of a double is refused here, naming the motion: run, it would make the body it hits
+// non-finite, and the message would blame that body.
+void check_motion_energies(const Model& model) {
+  Real heaviest = 0;
+  for (const Body& b : model.bodies) heaviest = std::max(heaviest, b.inertia.mass);
+  for (const Body& b : model.inlet_templates) heaviest = std::max(heaviest, b.inertia.mass);
+  for (size_t i = 0; i < model.scene.bodies.size() && i < model.bodies.size(); ++i) {
+    const BodyDef& def = model.scene.bodies[i];
+    if (!def.motion) continue;
+    const MotionDef& m = *def.motion;
+    const Real reach = body_size(model, model.bodies[i]) +
+                       (m.center ? (*m.center - def.position).norm() : Real(0));
+    Real speed = m.velocity.stableNorm() + m.angular_velocity.stableNorm() * reach;
+    if (m.oscillation)
+      speed += m.oscillation->amplitude.stableNorm() * 2 * std::numbers::pi *
+               m.oscillation->frequency;
+    if (m.surface_velocity) speed += m.surface_velocity->stableNorm();
+    if (std::isfinite(0.5 * heaviest * speed * speed)) continue;
+    std::ostringstream reason;
+    reason << "moves at up to " << speed << " (length units per second): a body of mass "
+           << heaviest << " pushed at that speed would carry a kinetic energy beyond the range of "
+           << "a double, and the run would stop with that body's state not finite; give a "
+           << "motion of a physical speed";
+    throw SceneError(def.path + ".motion", reason.str());
+  }
+}
+
+}  // namespace
+
 Model build_model(const SceneDef& scene) {
   Model model;
   model.scene = scene;
@@ -223,6 +259,8 @@ Model build_model(const SceneDef& scene) {
     model.any_motion = model.any_motion || b.motion.has_value();
     model.bodies_come_and_go = model.bodies_come_and_go || std::isfinite(b.removed_at);
   }
+  check_motion_energies(model);
+  for (std::string& warning : inlet_warnings(model)) model.warnings.push_back(std::move(warning));
   return model;
 }
 
