@@ -1,4 +1,4 @@
-// Contact detection benchmarks (issue 3): the narrow phase and patches of one block pair for the
+// Contact detection benchmarks: the narrow phase and patches of one block pair for the
 // paper's shapes, the broad phase and the whole detection on piles of 10^2 to 10^5 coins.
 // Run: build/release/bench/tem_bench --benchmark_filter=Contact
 #include <benchmark/benchmark.h>

@@ -1,5 +1,5 @@
 // The approximate cutter on the scan-like 75,000-face meshes (tests/support/scan_meshes.hpp),
-// against issue 12's targets: under a minute, at most 64 blocks, over-coverage under 5 % of the
+// against the cutter's targets: under a minute, at most 64 blocks, over-coverage under 5 % of the
 // mesh's volume, Hausdorff distance under 2 % of the bounding-box diagonal. One run each (a
 // run takes seconds); the figures come out as counters.
 // With TEM_PUBLIC_MESHES set to a directory, also each closed mesh file there (such as the

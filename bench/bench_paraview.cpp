@@ -1,4 +1,4 @@
-// ParaView output at scale (issue 11): one frame of a pile of N coins (bench_scenes.hpp, 12
+// ParaView output at scale: one frame of a pile of N coins (bench_scenes.hpp, 12
 // nodes and 20 triangles a coin) written by ParaviewOutput::write, as `tem run` writes it: the
 // bodies file, the contacts file and the line in tem.pvd, into a folder under TMPDIR (or /tmp).
 // Time per frame, and the sizes of the two files against the ASCII files of the same frame as

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The `tem run` profile (issue 6): runs scenes as a user would and prints, per scene and thread
+"""The `tem run` profile: runs scenes as a user would and prints, per scene and thread
 count, microseconds per step, body-steps per second, the split among the stages of the step,
 contact patches per step, time per patch, solver sweeps and peak memory (the process's maximum
 resident set, from wait4).

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Largest time step at which a scene stays right (issue 6).
+"""Largest time step at which a scene stays right.
 
 For each candidate dt (largest first) the scene is copied into a temporary directory with
 `time_step` = dt (and `duration` = --duration if given, and `output.interval` as below), run with

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Is a pour right? Judges one or more `tem run` output directories of a pile (issue 11).
+"""Is a pour right? Judges one or more `tem run` output directories of a pile.
 
 For each DIR (bodies.csv, energy.csv, scene.json of a finished `tem run`), prints:
 

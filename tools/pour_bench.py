@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The pour benchmark of issue 20: the same pours in TEM, ODE and Bullet, each judged right or not.
+"""The pour benchmark: the same pours in TEM, ODE and Bullet, each judged right or not.
 
 For every scene (default scenes/bench/coins_1000.json; --with-10000 adds coins_10000.json), every
 engine (tem, ode, bullet; a peer program not built is skipped with a note) and every time step

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Compares `tem` binaries on one run, taken in turn: A, B, A, B, ... (issue 20).
+"""Compares `tem` binaries on one run, taken in turn: A, B, A, B, ...
 
 On a shared machine the time of one run says little: this project's 2-core machine at times
 gives a two-thread run one core's worth (the same binary took 8.9 s or 16.4 s for the same run,

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""TEM and Bullet on the same scenes, alternately, in one run (issue 6).
+"""TEM and Bullet on the same scenes, alternately, in one run.
 
 For every scene: R rounds of `tem run` then `tem_bullet`, on one temporary copy of the scene (so
 both read the same dt and duration), the same number of steps. Prints one table row per scene:

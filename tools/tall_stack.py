@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Does a column of coins stand? The tall-pile check of issue 20 (docs/benchmarks.md).
+"""Does a column of coins stand? The tall-pile check (docs/benchmarks.md).
 
 Writes a column of LAYERS hexagonal coins (r 0.15, h 0.1, density 1, friction 0.3), each turned
 7 degrees about the vertical from the one below and dropped from 5 um above it, under earth

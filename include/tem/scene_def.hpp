@@ -32,8 +32,9 @@ enum class ContactModel { semm, semm_paper, penalty };
 enum class PatchNormals { paper, faces };
 // Where a patch's force acts: one point (the paper), or its extreme overlap corners.
 enum class PatchPoints { one, corners };
-// The default SEMM's solver: one scalar row per contact point (fast; the default), or each
-// patch's normal impulses solved together as one block (Lawson-Hanson; before issue 11).
+// The default SEMM's solver: one scalar row per contact point (fast; the default), each
+// patch's normal impulses solved together as one block (Lawson-Hanson), or Newton's method on
+// the bodies' velocities (src/forces/semm_newton/).
 enum class ContactSolver { rows, blocks, newton };
 // The penalty model's normal law: F = k d (linear) or F = k d^(3/2) (Hertz).
 enum class PenaltyLaw { linear, hertz };

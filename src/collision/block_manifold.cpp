@@ -395,9 +395,9 @@ bool block_manifold(const Block& a, const WorldBlock& wa, const Block& b, const 
   // over the reference face. Where the blocks meet edge across edge, the best edge pair's point
   // is the contact, with the better of the two lower bounds of the gap (the face's separation
   // where the edge axis separates less: a pair the face keeps apart is never pushed as if it
-  // overlapped along the edge axis). Before issue 20 such pairs were dropped as apart though
-  // within their margin or already overlapping, and coins crossing so in a pour sank up to 19 %
-  // of their thickness into each other in one step. Without an edge pair the blocks lie beside
+  // overlapped along the edge axis). Dropped as apart, such pairs within their margin or already
+  // overlapping let coins crossing so in a pour sink up to 19 % of their thickness into each
+  // other in one step. Without an edge pair the blocks lie beside
   // each other past the face's rim (a box sliding by the end of another, edges parallel): no
   // contact, as a point held to the face's plane there would brake a body that passes by.
   if (edges.edge_a >= 0) {

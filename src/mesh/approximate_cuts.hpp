@@ -24,7 +24,7 @@ inline constexpr Real kLookaheadWeight = 0.9;
 // Hull vertices closer than this fraction of the part's size are welded (hull_block).
 inline constexpr Real kWeld = 1e-5;
 // A block that strays further than this fraction of the mesh's bounding-box diagonal outside
-// the mesh is cut first, by the plane whose sides stray least (issue 21: 2 %, less a margin
+// the mesh is cut first, by the plane whose sides stray least (the goal is 2 %, less a margin
 // for the sampled estimate that ranks the planes).
 inline constexpr Real kDistanceGoal = 0.015;
 // A plane of the tree is moved (CutTree::refine_planes) only where that lowers the sum of the
@@ -34,7 +34,7 @@ inline constexpr Real kSmallestMoveGain = 1e-5;
 // The planes are first moved when the tree has this many leaves, then each time they double.
 inline constexpr int kFirstPlaneMoves = 8;
 // The Hausdorff distance is found to within this fraction of the mesh's bounding-box diagonal
-// (an eighth of issue 12's target of 2 %).
+// (an eighth of the 2 % that kDistanceGoal aims under).
 inline constexpr Real kDistancePrecision = 2.5e-3;
 
 struct Leaf {
