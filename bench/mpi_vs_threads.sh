@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Two ranks against two threads (issue 14) on the 10,000-coin pour (coins_10000) as its cloud
+# Two ranks against two threads on the 10,000-coin pour (coins_10000) as its cloud
 # lands: SEMM at dt 5e-4 (scenes/bench/coins_10000_landing.json, 200 steps) and the penalty
 # model at dt 2e-4 (scenes/bench/coins_10000_penalty.json, 500 steps). Time per step at 1
 # thread, 2 threads and 2 ranks of one thread each, the exchanges' share and message sizes,

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Optional: Bullet from Debian's archive, for tem_bullet and tools/side_by_side.py (issue 6).
+# Optional: Bullet from Debian's archive, for tem_bullet and tools/side_by_side.py.
 # Not part of install_deps.sh: TEM builds and tests without it. Re-run cmake afterwards so that
 # bench/bullet/CMakeLists.txt finds it.
 set -euo pipefail

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Optional: the peer engines of the pour benchmark (issue 20, tools/pour_bench.py) from Debian's
+# Optional: the peer engines of the pour benchmark (tools/pour_bench.py) from Debian's
 # archive: ODE (libode-dev, for tem_ode) and Bullet (libbullet-dev, for tem_bullet).
 # Not part of install_deps.sh: TEM builds and tests without them. Re-run cmake afterwards so
 # that bench/ode/ and bench/bullet/ find them.

@@ -1,4 +1,4 @@
-// tem_bullet: runs a TEM scene in Bullet (issue 6, side by side; issue 20, pour benchmark) and
+// tem_bullet: runs a TEM scene in Bullet (side by side, and the pour benchmark) and
 // judges the result with TEM's own measures. The scene is read and built by TEM (same bodies,
 // masses, inertia, walls, gravity, dt), then rebuilt in Bullet (bullet_world.hpp). The driver,
 // its common options and its summary line are shared with tem_ode (bench/peers/peer_run.hpp).

@@ -1,4 +1,4 @@
-// tem_ode: runs a TEM scene in ODE (issue 20, the pour benchmark of tools/pour_bench.py) and
+// tem_ode: runs a TEM scene in ODE (the pour benchmark of tools/pour_bench.py) and
 // judges the result with TEM's own measures. The scene is read and built by TEM (same bodies,
 // masses, inertia, walls, gravity, dt), then rebuilt in ODE (ode_world.hpp). The driver, its
 // common options and its summary line are shared with tem_bullet (bench/peers/peer_run.hpp).

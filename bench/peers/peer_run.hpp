@@ -9,7 +9,7 @@
 //   [--samples FILE] [--sample-every S] [--rest-speed V] [--rest-window W] [--creep-window W]
 //
 // --samples FILE writes one CSV row every S seconds of simulated time (default 0.01), first at
-// t = 0: what the pour rules of issue 20 need (docs/benchmarks.md "Pour side by side"):
+// t = 0: what the pour rules need (docs/benchmarks.md "Pour side by side"):
 //   time, outside (centres outside the container box), max_depth (deepest contact patch by
 //   TEM's detection), kinetic, potential, total (TEM's system_energies), max_point_speed (the
 //   largest |v| + |omega| * body_size over the free bodies).

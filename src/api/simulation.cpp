@@ -148,8 +148,8 @@ void Simulation::Impl::start_recording(const std::string& dir, std::unique_ptr<R
 }
 
 void Simulation::Impl::write_row() {
-  workspace.loads.update_active();
-  find_contact_forces(model, state, workspace);
+  StepHooks none;
+  find_forces(model, state, workspace, none);
   write_found_row();
 }
 
@@ -160,23 +160,26 @@ void Simulation::Impl::write_found_row() {
 }
 
 void Simulation::Impl::advance_one() {
+  take_step(model, state, workspace, removed, *this);
+  stepped = true;
+}
+
+// As `tem run`: a checkpoint where a step begins, before its rows (resuming redoes them).
+void Simulation::Impl::step_begins(const Model&, State&, Workspace&) {
   const long long k = state.step;
-  // As `tem run`: a checkpoint where a step begins, before its rows (resuming redoes them).
   if (output && checkpoint_every > 0 && k % checkpoint_every == 0 && k != first_step)
     tem::write_checkpoint(directory + "/checkpoint.bin",
-                     make_checkpoint(model.scene, state, workspace.forces,
-                                     workspace.contact.features, output->sizes()));
-  workspace.loads.update_active();
-  find_contact_forces(model, state, workspace);
+                          make_checkpoint(model.scene, state, workspace.forces,
+                                          workspace.contact.features, output->sizes()));
+}
+
+void Simulation::Impl::forces_found(const Model&, const State&, const Workspace&) {
+  const long long k = state.step;
   if (output && k % every == 0 && written_step != k) write_found_row();
-  advance(model, state, workspace);
-  // 0. Population (for the state this step leaves): outlets and removed_at, then inlets.
-  if (model.bodies_come_and_go) {
-    update_population(model, state, links(), removed);
-    if (output) output->write_removed(removed);
-    removed.clear();
-  }
-  stepped = true;
+}
+
+void Simulation::Impl::bodies_left(const std::vector<RemovedBody>& left) {
+  if (output) output->write_removed(left);
 }
 
 // --- loading -------------------------------------------------------------------------------

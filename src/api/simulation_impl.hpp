@@ -11,11 +11,14 @@
 #include "io/run_output.hpp"
 #include "process/population.hpp"
 #include "simulation/step.hpp"
+#include "simulation/step_loop.hpp"
 #include "tem/simulation.hpp"
 
 namespace tem {
 
-struct Simulation::Impl {
+// The Impl is also the step's hooks (simulation/step_loop.hpp): while recording, a checkpoint
+// where a step begins, the rows of the state a step starts from, and the bodies that left.
+struct Simulation::Impl : StepHooks {
   Model model;
   State state;
   Workspace workspace;
@@ -52,6 +55,11 @@ struct Simulation::Impl {
   void advance_one();
   void write_row();  // the current state's row: its contact forces first
   void write_found_row();  // the same, with the contact forces already found for this state
+
+  // StepHooks
+  void step_begins(const Model& model, State& state, Workspace& w) override;
+  void forces_found(const Model& model, const State& state, const Workspace& w) override;
+  void bodies_left(const std::vector<RemovedBody>& left) override;
 };
 
 }  // namespace tem

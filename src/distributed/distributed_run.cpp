@@ -3,6 +3,7 @@
 #include <mpi.h>
 
 #include "io/checkpoint.hpp"
+#include "simulation/step_loop.hpp"
 
 namespace tem::distributed {
 namespace {
@@ -42,6 +43,39 @@ void write_rows(const Domain& domain, const Model& model, const State& state, co
   if (domain.rank() == 0 && plan.output) plan.output->write(model, whole, gathered);
 }
 
+// The run's work between the stages of a step (simulation/step_loop.hpp): a checkpoint and
+// rebalancing where a step begins, the ghosts around the forces, rank 0's rows.
+class RankHooks : public StepHooks {
+ public:
+  RankHooks(Domain& domain, const RunPlan& plan, long long first_step)
+      : domain_(domain), plan_(plan), first_step_(first_step) {}
+  void step_begins(const Model& model, State& state, Workspace& w) override {
+    // As one process (Simulation::Impl): a checkpoint where a step begins, before its rows.
+    const long long k = state.step;
+    if (plan_.checkpoint_every > 0 && k % plan_.checkpoint_every == 0 && k != first_step_)
+      write_distributed_checkpoint(domain_, model, state, w, plan_);
+    domain_.balance_if_needed(model, state, w);
+  }
+  void before_forces(const Model& model, State& state, Workspace& w) override {
+    domain_.exchange(model, state, w);
+  }
+  void after_forces(Workspace& w) override { domain_.return_ghost_forces(w); }
+  void forces_found(const Model& model, const State& state, const Workspace& w) override {
+    if (state.step % plan_.every == 0 && written_step_ != state.step) write(model, state, w);
+  }
+  void write(const Model& model, const State& state, const Workspace& w) {
+    write_rows(domain_, model, state, w, plan_);
+    written_step_ = state.step;
+  }
+  long long written_step() const { return written_step_; }
+
+ private:
+  Domain& domain_;
+  const RunPlan& plan_;
+  long long first_step_;
+  long long written_step_ = -1;
+};
+
 bool any_rank(MPI_Comm comm, bool mine) {
   int flag = mine ? 1 : 0, any = 0;
   MPI_Allreduce(&flag, &any, 1, MPI_INT, MPI_LOR, comm);
@@ -79,33 +113,20 @@ std::string unsupported_reason(const SceneDef& scene) {
   return "";
 }
 
-RunResult run_steps(Domain& domain, const Model& model, State& state, Workspace& w,
+RunResult run_steps(Domain& domain, Model& model, State& state, Workspace& w,
                     const RunPlan& plan, const std::function<bool()>& stop_requested,
                     const std::function<void(long long, Real)>& progress) {
   RunResult result;
-  const long long first_step = state.step;
-  long long written_step = -1;
+  RankHooks hooks(domain, plan, state.step);
+  std::vector<RemovedBody> removed;  // none: scenes where bodies come and go are refused
   while (state.step < plan.total_steps) {
-    const long long k = state.step;
     if (any_rank(MPI_COMM_WORLD, stop_requested())) {
       write_distributed_checkpoint(domain, model, state, w, plan);
       result.end = RunEnd::stopped;
       domain.gather_state(model, state, result.whole);
       return result;
     }
-    // As one process (Simulation::Impl::advance_one): a checkpoint where a step begins, before
-    // its rows.
-    if (plan.checkpoint_every > 0 && k % plan.checkpoint_every == 0 && k != first_step)
-      write_distributed_checkpoint(domain, model, state, w, plan);
-    domain.balance_if_needed(model, state, w);
-    domain.exchange(model, state, w);
-    find_contact_forces(model, state, w);
-    domain.return_ghost_forces(w);
-    if (k % plan.every == 0 && written_step != k) {
-      write_rows(domain, model, state, w, plan);
-      written_step = k;
-    }
-    advance(model, state, w);
+    take_step(model, state, w, removed, hooks);
     const int bad = domain.first_non_finite_body(state);
     if (bad >= 0) {
       result.end = RunEnd::not_finite;
@@ -116,11 +137,9 @@ RunResult run_steps(Domain& domain, const Model& model, State& state, Workspace&
   }
   // The checkpoint of the last state, then its rows (as `tem run` on one process).
   write_distributed_checkpoint(domain, model, state, w, plan);
-  if (written_step != state.step) {
-    domain.exchange(model, state, w);
-    find_contact_forces(model, state, w);
-    domain.return_ghost_forces(w);
-    write_rows(domain, model, state, w, plan);
+  if (hooks.written_step() != state.step) {
+    find_forces(model, state, w, hooks);
+    hooks.write(model, state, w);
   }
   domain.gather_state(model, state, result.whole);
   return result;

@@ -33,7 +33,9 @@ struct RunResult {
 // Steps from the current state to plan.total_steps. `stop_requested` is asked on every rank
 // each step; the run stops, after a checkpoint, at the first step where any rank says yes.
 // `progress` is called on rank 0 after every step.
-RunResult run_steps(Domain& domain, const Model& model, State& state, Workspace& workspace,
+// Each step is simulation/step_loop.hpp's take_step, with this run's checkpoints, rebalancing,
+// ghost exchange and rows as its hooks.
+RunResult run_steps(Domain& domain, Model& model, State& state, Workspace& workspace,
                     const RunPlan& plan, const std::function<bool()>& stop_requested,
                     const std::function<void(long long, Real)>& progress);
 
