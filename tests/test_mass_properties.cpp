@@ -9,7 +9,7 @@
 #include <string>
 
 #include "geometry/primitives.hpp"
-#include "geometry/shape_blocks.hpp"
+#include "world/shape_blocks.hpp"
 #include "mass/mass_properties.hpp"
 #include "mass/surface_integrals.hpp"
 #include "world/model.hpp"

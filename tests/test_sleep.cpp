@@ -1,4 +1,4 @@
-// Sleep of bodies at rest (dynamics/sleep.hpp, docs/method.md "Sleep"): boxes of 0.2 x 0.2 x 0.1
+// Sleep of bodies at rest (simulation/sleep.hpp, docs/method.md "Sleep"): boxes of 0.2 x 0.2 x 0.1
 // cm on the floor under earth gravity (cm/s^2), at dt 1e-4 s, sleep.speed 0.5 cm/s and
 // sleep.time 0.05 s. A box that settles moves at far less than 0.5 cm/s within a few
 // hundredths of a second, and a falling one far faster, so the thresholds tell them apart.
@@ -9,7 +9,7 @@
 #include <fstream>
 
 #include "api/simulation_impl.hpp"
-#include "dynamics/sleep.hpp"
+#include "simulation/sleep.hpp"
 #include "io/checkpoint.hpp"
 #include "io/scene_reader.hpp"
 #include "io/scene_writer.hpp"

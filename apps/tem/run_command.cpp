@@ -12,7 +12,7 @@
 #include "api/simulation_impl.hpp"
 #include "commands.hpp"
 #include "contact/initial_overlap.hpp"
-#include "dynamics/sleep.hpp"
+#include "simulation/sleep.hpp"
 #include "forces/penalty.hpp"
 #include "progress.hpp"
 #include "stop_signal.hpp"

@@ -178,7 +178,7 @@ struct ContactDef {
   std::vector<MaterialPairDef> pairs;
 };
 
-// Bodies at rest fall asleep (src/dynamics/sleep.hpp, docs/method.md "Sleep"): an island of
+// Bodies at rest fall asleep (src/simulation/sleep.hpp, docs/method.md "Sleep"): an island of
 // bodies in contact whose every body has moved slower than `speed` (|v| + |omega| * its size)
 // for `time` seconds stops being integrated and tested for contact until something wakes it.
 struct SleepDef {

@@ -52,7 +52,7 @@ class BroadPhase {
               const BodySubset* subset = nullptr);
 
   // Drops the pairs in which no body moves this step (`moving`: one flag per body): two bodies
-  // asleep, a body asleep and a fixed one, a body asleep and a wall (dynamics/sleep.hpp). The
+  // asleep, a body asleep and a fixed one, a body asleep and a wall (simulation/sleep.hpp). The
   // pairs left keep their order.
   void drop_resting_pairs(const std::vector<char>& moving);
 

@@ -16,7 +16,7 @@ struct BodyState {
   Vec3 omega = Vec3::Zero();        // angular velocity Omega in BODY axes; L = g A Omega
   Vec3 prev_torque = Vec3::Zero();  // N^{n-1}, world, for the paper's dN of eq. 18
   bool has_prev_torque = false;     // false before the first step: dN is taken as zero then
-  // Sleep (dynamics/sleep.hpp; only with the scene's `sleep`): how long the body has moved
+  // Sleep (simulation/sleep.hpp; only with the scene's `sleep`): how long the body has moved
   // slower than sleep.speed, whether it sleeps (then v and omega are exactly zero), and the
   // island it fell asleep with, named by the lowest BodyTag::id in it (-1: none).
   Real rest_time = 0;

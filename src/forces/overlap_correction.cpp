@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "simulation/step.hpp"
+#include "forces/system_energies.hpp"
 
 namespace tem {
 

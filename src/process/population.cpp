@@ -4,7 +4,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "dynamics/sleep.hpp"
 #include "process/motion.hpp"
 #include "world/fill.hpp"
 #include "world/inlet_delivery.hpp"
@@ -235,10 +234,7 @@ void start_population(Model& model, State& state, const PopulationLinks& links,
 
 void update_population(Model& model, State& state, const PopulationLinks& links,
                        std::vector<RemovedBody>& removed) {
-  const size_t removed_before = removed.size();
   bool changed = remove_leaving(model, state, links, removed);
-  if (changed && model.scene.sleep)
-    wake_near_removed(model, removed, removed_before, state);
   changed = insert_due(model, state, links) || changed;
   if (changed) ++model.population_version;
 }

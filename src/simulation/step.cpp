@@ -125,7 +125,7 @@ void find_contact_forces(const Model& model, State& state, Workspace& w) {
   // count is chosen (below), so that the count, and a second call at the same state, find them so.
   const bool counted = model.any_motion && scene.contact.max_substeps > 0;
   if (counted) move_driven_bodies(model, state, substep_time(scene));
-  // A scene wholly asleep has no contact to find (dynamics/sleep.hpp).
+  // A scene wholly asleep has no contact to find (simulation/sleep.hpp).
   if (scene.sleep && everything_sleeps(model, state, w.loads, w.sleep, w.patches, w.forces)) return;
 
   // 1. Broad phase: block pairs and block-wall pairs whose world bounds overlap, grown by each
@@ -217,29 +217,6 @@ void advance(const Model& model, State& state, Workspace& w) {
   w.times.max_sweeps = std::max(w.times.max_sweeps, sweeps);
   if (unconverged) ++w.times.unconverged_steps;
   if (scaled) ++w.times.scaled_steps;
-}
-
-Energies system_energies(const Model& model, const State& state) {
-  return system_energies(model, state, nullptr);
-}
-
-Energies system_energies(const Model& model, const State& state, SolverSync* sync) {
-  Energies e;
-  for (size_t i = 0; i < model.bodies.size(); ++i) {
-    if (sync && !sync->owns(static_cast<int>(i))) continue;
-    // Fixed bodies and bodies with a prescribed motion are driven from outside: their energy
-    // is the driver's (State::driven_work counts what moving ones give the others), and a gate
-    // taken away must not change the energy of what is left.
-    if (model.bodies[i].driven()) continue;
-    const RigidInertia& inertia = model.bodies[i].inertia;
-    e.kinetic += kinetic_energy(inertia, state.bodies[i]);
-    e.potential += potential_energy(inertia, model.scene.gravity, state.bodies[i]);
-  }
-  if (sync) {
-    e.kinetic = sync->sum(e.kinetic);
-    e.potential = sync->sum(e.potential);
-  }
-  return e;
 }
 
 int first_non_finite_body(const State& state) {

@@ -7,9 +7,10 @@
 
 #include "contact/detect_contacts.hpp"
 #include "contact/refreshed_patches.hpp"
-#include "dynamics/sleep.hpp"
+#include "simulation/sleep.hpp"
 #include "forces/contact_forces.hpp"
 #include "forces/solver_sync.hpp"
+#include "forces/system_energies.hpp"
 #include "world/model.hpp"
 
 namespace tem {
@@ -60,7 +61,7 @@ struct Workspace {
   BodySubset subset;
   // With a subset whose contacts are solved together by all ranks (SEMM): how they agree.
   SolverSync* sync = nullptr;
-  // With the scene's `sleep`: who is left out this step (dynamics/sleep.hpp).
+  // With the scene's `sleep`: who is left out this step (simulation/sleep.hpp).
   SleepWorkspace sleep;
 };
 
@@ -75,16 +76,6 @@ void advance(const Model& model, State& state, Workspace& workspace);
 
 // One whole step: find_contact_forces, then advance.
 void step(const Model& model, State& state, Workspace& workspace);
-
-// Whole-system energies at a state: kinetic, potential (-M G.x summed), their total.
-struct Energies {
-  Real kinetic = 0;
-  Real potential = 0;
-  Real total() const { return kinetic + potential; }
-};
-Energies system_energies(const Model& model, const State& state);
-// Over MPI ranks (sync not null): each rank's owned bodies, summed over the ranks.
-Energies system_energies(const Model& model, const State& state, SolverSync* sync);
 
 // The first body whose state is not finite, or -1.
 int first_non_finite_body(const State& state);

@@ -1,5 +1,7 @@
 #include "simulation/step_loop.hpp"
 
+#include "simulation/sleep.hpp"
+
 namespace tem {
 
 void find_forces(const Model& model, State& state, Workspace& w, StepHooks& hooks) {
@@ -16,8 +18,12 @@ void take_step(Model& model, State& state, Workspace& w, std::vector<RemovedBody
   hooks.forces_found(model, state, w);
   advance(model, state, w);
   if (model.bodies_come_and_go) {
+    const size_t removed_before = removed.size();
     update_population(model, state,
                       {&w.forces, &w.patches, &w.loads, &w.contact.features}, removed);
+    // Sleeping bodies near those taken away wake (sleep.hpp); the copies just placed are awake.
+    if (model.scene.sleep && removed.size() > removed_before)
+      wake_near_removed(model, removed, removed_before, state);
     hooks.bodies_left(removed);
     removed.clear();
   }

@@ -11,7 +11,7 @@
 #include <set>
 #include <sstream>
 
-#include "geometry/shape_blocks.hpp"
+#include "world/shape_blocks.hpp"
 #include "mesh/mesh_body.hpp"
 #include "world/fill.hpp"
 #include "world/inlet_delivery.hpp"

@@ -1,4 +1,4 @@
-#include "geometry/shape_blocks.hpp"
+#include "world/shape_blocks.hpp"
 
 #include "geometry/primitives.hpp"
 #include "mesh/mesh_body.hpp"

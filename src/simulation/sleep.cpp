@@ -1,4 +1,4 @@
-#include "dynamics/sleep.hpp"
+#include "simulation/sleep.hpp"
 
 #include <algorithm>
 #include <limits>
