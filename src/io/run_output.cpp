@@ -34,9 +34,10 @@ void open(std::ofstream& file, const std::string& path, const char* header,
 }
 
 constexpr const char* kBodiesHeader = "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz";
-// driven_work (the work of bodies with a prescribed motion on the others) came last, after the
-// columns readers already relied on.
-constexpr const char* kEnergyHeader =
+constexpr const char* kEnergyHeader = "time,kinetic,potential,total,contacts,max_depth";
+// Where bodies have a prescribed motion, the work they did on the others (interface.md): last,
+// after the columns every scene has.
+constexpr const char* kEnergyHeaderDriven =
     "time,kinetic,potential,total,contacts,max_depth,driven_work";
 constexpr const char* kRemovedHeader = "time,body,x,y,z,vx,vy,vz,mass";
 constexpr const char* kSensorsHeader = "time,sensor,count,mass,fx,fy,fz,tx,ty,tz";
@@ -103,7 +104,9 @@ RunOutput::RunOutput(const std::string& directory, const Model& model, bool cont
   if (!write_scene_file(model.scene, directory + "/scene.json", &message))
     throw std::runtime_error(message);
   open(bodies_, directory + "/bodies.csv", kBodiesHeader, resume ? resume->bodies : -1);
-  open(energy_, directory + "/energy.csv", kEnergyHeader, resume ? resume->energy : -1);
+  with_driven_work_ = model.any_motion;
+  open(energy_, directory + "/energy.csv", with_driven_work_ ? kEnergyHeaderDriven : kEnergyHeader,
+       resume ? resume->energy : -1);
   if (contacts)
     open(contacts_, directory + "/contacts.csv", kContactsCsvHeader,
          resume ? resume->contacts : -1);
@@ -144,7 +147,7 @@ void RunOutput::write(const Model& model, const State& state, const Workspace& w
   append_field(rows, e.total());
   rows += ',' + std::to_string(workspace.patches.size());
   append_field(rows, max_depth);
-  append_field(rows, state.driven_work);
+  if (with_driven_work_) append_field(rows, state.driven_work);
   rows += '\n';
   energy_ << rows << std::flush;
 

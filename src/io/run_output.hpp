@@ -48,7 +48,7 @@ class RunOutput {
  private:
   std::ofstream bodies_, energy_, contacts_, removed_, sensors_;
   bool with_contacts_;
-  bool with_removed_ = false, with_sensors_ = false;
+  bool with_removed_ = false, with_sensors_ = false, with_driven_work_ = false;
   std::unique_ptr<ParaviewOutput> paraview_;  // with output.paraview
   std::vector<std::string> earlier_removed_;
 };
