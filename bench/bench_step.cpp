@@ -1,5 +1,6 @@
 // Whole simulation steps on piles of N coins (bench_scenes.hpp: every coin touching its
-// neighbours, as in a settled pile), one and two threads, sweeps in patch order or by colours
+// neighbours, as in a settled pile), each the step every driver takes (take_step: the stages
+// `tem run` runs, population and sleep included), one and two threads, sweeps in patch order or by colours
 // (contact.sweep_order): time per step, body-steps per second,
 // time per contact patch, and the split among the stages of the step. The solver stops as in
 // scenes/bench (tolerance 1e-3, at most 20 sweeps), dt 1e-4.
@@ -7,7 +8,7 @@
 
 #include "bench_scenes.hpp"
 #include "support/parallel.hpp"
-#include "simulation/step.hpp"
+#include "simulation/step_loop.hpp"
 
 namespace tem::bench {
 namespace {
@@ -22,9 +23,12 @@ void BM_StepPile(benchmark::State& st) {
   set_threads(static_cast<int>(st.range(1)));
   State state = initial_state(model);
   Workspace workspace;
-  step(model, state, workspace);  // warm start and scratch in place, as in a running simulation
+  std::vector<RemovedBody> removed;
+  StepHooks no_driver;  // no files, checkpoints or ranks: the step itself
+  // Warm start and scratch in place, as in a running simulation.
+  take_step(model, state, workspace, removed, no_driver);
   workspace.times = StageTimes{};
-  for (auto _ : st) step(model, state, workspace);
+  for (auto _ : st) take_step(model, state, workspace, removed, no_driver);
   set_threads(1);
 
   const StageTimes& t = workspace.times;

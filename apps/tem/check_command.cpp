@@ -5,7 +5,7 @@
 #include <string>
 
 #include "commands.hpp"
-#include "contact/initial_overlap.hpp"
+#include "tem/scene_report.hpp"
 
 namespace tem::cli {
 namespace {
@@ -14,33 +14,38 @@ std::string plural(std::size_t n, const char* one, const char* many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
+int problems_failed(const std::string& scene_file, std::size_t problems) {
+  std::fprintf(stderr, "%s: %s\n", scene_file.c_str(),
+               plural(problems, "problem", "problems").c_str());
+  return kExitBadInput;
+}
+
 }  // namespace
 
 int check_command(const std::string& scene_file) {
-  int problems = 0;
-  const std::optional<Model> model = load_model(scene_file, &problems);
-  if (!model) {
-    std::fprintf(stderr, "%s: %s\n", scene_file.c_str(),
-                 plural(problems, "problem", "problems").c_str());
-    return kExitBadInput;
+  SceneReport scene;
+  try {
+    scene = report_scene(scene_file);
+  } catch (const std::exception& e) {
+    const std::string message = load_failure(scene_file, e);  // one problem per line
+    std::fprintf(stderr, "%s\n", message.c_str());
+    std::size_t lines = 1;
+    for (char c : message) lines += c == '\n';
+    return problems_failed(scene_file, lines);
   }
-  print_warnings(scene_file, *model);
-  for (const InitialOverlap& o : deep_initial_overlaps(*model))
-    std::fprintf(stderr, "%s: warning: %s\n", scene_file.c_str(), describe(*model, o).c_str());
-  const SceneDef& scene = model->scene;
+  for (const std::string& warning : scene.warnings)
+    std::fprintf(stderr, "%s: warning: %s\n", scene_file.c_str(), warning.c_str());
   const double steps = std::round(scene.duration / scene.time_step);
-  long long inlet_copies = 0;
-  for (const InletDef& inlet : scene.inlets) inlet_copies += inlet.count;
   const std::string inlets =
-      scene.inlets.empty() ? ""
-                           : ", " + plural(static_cast<std::size_t>(inlet_copies), "body", "bodies") +
-                                 " to come from " +
-                                 plural(scene.inlets.size(), "inlet", "inlets");
+      scene.inlets == 0 ? ""
+                        : ", " + plural(static_cast<std::size_t>(scene.inlet_copies), "body", "bodies") +
+                              " to come from " +
+                              plural(static_cast<std::size_t>(scene.inlets), "inlet", "inlets");
   std::printf("%s: ok (%s%s, %s, %s; %g s in %.0f steps of %g s)\n", scene_file.c_str(),
-              plural(model->bodies.size(), "body", "bodies").c_str(), inlets.c_str(),
-              plural(model->blocks.size(), "block", "blocks").c_str(),
-              plural(model->walls.size(), "wall", "walls").c_str(), scene.duration, steps,
-              scene.time_step);
+              plural(scene.bodies.size(), "body", "bodies").c_str(), inlets.c_str(),
+              plural(static_cast<std::size_t>(scene.blocks), "block", "blocks").c_str(),
+              plural(static_cast<std::size_t>(scene.walls), "wall", "walls").c_str(), scene.duration,
+              steps, scene.time_step);
   return kExitOk;
 }
 

@@ -1,12 +1,13 @@
 // The commands of the `tem` program, one file each; main.cpp only parses the command line.
 // Every command returns the process's exit status and prints its own messages: results to
-// stdout, problems and warnings to stderr, each naming the scene file.
+// stdout, problems and warnings to stderr, each naming the scene file. The commands are clients
+// of TEM's public API (include/tem/), like any other program.
 #pragma once
 
-#include <optional>
+#include <exception>
 #include <string>
 
-#include "world/model.hpp"
+#include "tem/types.hpp"
 
 namespace tem::cli {
 
@@ -19,13 +20,9 @@ inline constexpr int kExitFailed = 3;    // a run failed: its output could not b
 inline constexpr int kExitInterrupted = 130;  // `run` stopped by Ctrl-C or SIGTERM, after
                                               // writing a checkpoint (128 + SIGINT, the shell's)
 
-// Reads the scene and builds its model. On failure prints every problem found, one per line
-// ("FILE: PATH: reason"), to stderr and returns nothing. `problem_count`, when given, receives
-// the number of problems printed.
-std::optional<Model> load_model(const std::string& scene_file, int* problem_count = nullptr);
-
-// Prints the model's warnings ("FILE: warning: ...") to stderr.
-void print_warnings(const std::string& scene_file, const Model& model);
+// A scene that could not be loaded, as the commands print it: SceneLoadError's lines (one
+// problem each, naming the file) as they are, anything else after the file's name.
+std::string load_failure(const std::string& scene_file, const std::exception& e);
 
 // `tem info SCENE [--json]`: each body's volume, mass, centre of mass and inertia.
 int info_command(const std::string& scene_file, bool json);

@@ -3,22 +3,23 @@
 // other) before running anything.
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 #include "commands.hpp"
-#include "contact/detect_contacts.hpp"
-#include "io/contacts_csv.hpp"
+#include "tem/simulation.hpp"
 
 namespace tem::cli {
 
 int contacts_command(const std::string& scene_file, const std::string& out_file) {
-  const std::optional<Model> model = load_model(scene_file);
-  if (!model) return kExitBadInput;
-  print_warnings(scene_file, *model);
-
-  const State state = initial_state(*model);
-  ContactWorkspace workspace;
-  std::vector<ContactPatch> patches;
-  detect_contacts(*model, state, patch_variant(model->scene), workspace, patches);
+  std::optional<Simulation> sim;
+  try {
+    sim.emplace(Simulation::load(scene_file));
+  } catch (const std::exception& e) {
+    std::cerr << load_failure(scene_file, e) << "\n";
+    return kExitBadInput;
+  }
+  for (const std::string& warning : sim->warnings())
+    std::cerr << scene_file << ": warning: " << warning << "\n";
 
   std::ofstream file;
   if (!out_file.empty()) {
@@ -29,16 +30,15 @@ int contacts_command(const std::string& scene_file, const std::string& out_file)
     }
   }
   std::ostream& out = out_file.empty() ? std::cout : file;
-  out << kContactsCsvHeader << "\n";
-  write_contact_rows(out, *model, state.time, patches);
+  const std::size_t patches = sim->write_contacts_csv(out);
   out.flush();
   if (!out) {
     std::cerr << (out_file.empty() ? "stdout" : out_file) << ": write failed\n";
     return kExitBadInput;
   }
   if (!out_file.empty())
-    std::cerr << scene_file << ": " << patches.size() << " contact patches written to "
-              << out_file << "\n";
+    std::cerr << scene_file << ": " << patches << " contact patches written to " << out_file
+              << "\n";
   return kExitOk;
 }
 

@@ -9,26 +9,22 @@
 #include <optional>
 #include <thread>
 
-#include "api/simulation_impl.hpp"
 #include "commands.hpp"
-#include "contact/initial_overlap.hpp"
-#include "simulation/sleep.hpp"
-#include "forces/penalty.hpp"
 #include "progress.hpp"
 #include "stop_signal.hpp"
-#include "support/parallel.hpp"
 #include "tem/simulation.hpp"
 #ifdef TEM_MPI
-#include "distributed/mpi_session.hpp"
+#include "tem/distributed.hpp"
 #endif
 
 namespace tem::cli {
 namespace {
 
-void print_summary(const Model& model, const State& state, const Workspace& w, double wall) {
-  const StageTimes& t = w.times;
+void print_summary(const Simulation& sim, double wall) {
+  const RunStatistics t = sim.run_statistics();
+  const SceneDef& scene = sim.scene();
   const double steps = static_cast<double>(std::max<long long>(t.steps, 1));
-  const Energies e = system_energies(model, state);
+  const SystemEnergies e = sim.energies();
   std::fprintf(stderr,
                "tem run: %lld steps to t = %.6g s in %.3f s (%.0f steps/s, %.2f us/step)\n"
                "  per step: broad phase %.2f us, narrow phase + patches %.2f us, forces %.2f us, "
@@ -38,49 +34,47 @@ void print_summary(const Model& model, const State& state, const Workspace& w, d
                "  contacts: %.1f patches and %.1f points per step on average, %.2f us per patch "
                "(all stages)\n"
                "  final energy: kinetic %.9g, potential %.9g, total %.9g\n",
-               t.steps, state.time, wall, t.steps / std::max(wall, 1e-9), 1e6 * wall / steps,
+               t.steps, sim.time(), wall, t.steps / std::max(wall, 1e-9), 1e6 * wall / steps,
                1e6 * t.broad_phase / steps, 1e6 * t.narrow_phase / steps, 1e6 * t.forces / steps,
-               1e6 * t.integrate / steps, static_cast<double>(t.sweeps) / steps,
-               model.scene.contact.solver == ContactSolver::newton ? "Newton iterations"
-                                                                   : "sweeps",
-               t.max_sweeps,
-               t.unconverged_steps, t.scaled_steps, t.patches / steps, t.points / steps,
-               t.patches > 0 ? 1e6 * wall / static_cast<double>(t.patches) : 0.0, e.kinetic,
-               e.potential, e.total());
-  if (model.scene.contact.max_substeps > model.scene.contact.substeps)
+               1e6 * t.integrate / steps, static_cast<double>(t.solver_iterations) / steps,
+               scene.contact.solver == ContactSolver::newton ? "Newton iterations" : "sweeps",
+               t.max_solver_iterations, t.unconverged_steps, t.scaled_steps, t.patches / steps,
+               t.points / steps, t.patches > 0 ? 1e6 * wall / static_cast<double>(t.patches) : 0.0,
+               e.kinetic, e.potential, e.total());
+  if (scene.contact.max_substeps > scene.contact.substeps)
     std::fprintf(stderr, "  sub-steps: %.2f per step on average, %d at most\n",
                  static_cast<double>(t.substeps) / steps, t.max_substeps);
   if (t.fallback_islands > 0)
     std::fprintf(stderr,
                  "  Newton: %lld islands not converged in %d iterations were solved by the row "
                  "solver instead\n",
-                 t.fallback_islands, kMaxNewtonIterations);
+                 t.fallback_islands, t.newton_iteration_limit);
   if (t.corrected_steps > 0)
     std::fprintf(stderr, "  overlap correction: bodies moved apart in %lld of %lld steps\n",
                  t.corrected_steps, t.steps);
-  if (t.block_pairs > 0 && model.scene.contact.pair_cache)
+  if (t.block_pairs > 0 && scene.contact.pair_cache)
     std::fprintf(stderr,
                  "  pair cache: of %.1f block pairs per step, %.1f %% took last step's features "
                  "and %.1f %% were kept apart by last step's separating face\n",
                  static_cast<double>(t.block_pairs) / steps,
                  100.0 * static_cast<double>(t.cached_pairs) / static_cast<double>(t.block_pairs),
                  100.0 * static_cast<double>(t.apart_pairs) / static_cast<double>(t.block_pairs));
-  if (model.scene.sleep)
-    std::fprintf(stderr, "  sleep: %lld of %zu bodies asleep at the end\n",
-                 sleeping_bodies(state), state.bodies.size());
+  if (scene.sleep)
+    std::fprintf(stderr, "  sleep: %lld of %d bodies asleep at the end\n", t.sleeping_bodies,
+                 sim.body_count());
   // Patch order shares the row solver's sweeps level by level, but the block solver and
   // conjugate gradients keep them on one thread: say so where threads were asked for and the
   // sweeps were a real part of the work.
-  const ContactDef& contact = model.scene.contact;
-  if (max_threads() > 1 && contact.model == ContactModel::semm && !contact.colour_sweeps &&
+  const ContactDef& contact = scene.contact;
+  if (Simulation::threads() > 1 && contact.model == ContactModel::semm && !contact.colour_sweeps &&
       (contact.solver == ContactSolver::blocks || contact.conjugate_gradients) &&
-      static_cast<double>(t.sweeps) / steps > 4)
+      static_cast<double>(t.solver_iterations) / steps > 4)
     std::fprintf(stderr,
                  "  note: the contact solver's sweeps ran on one thread (contact.sweep_order "
                  "\"patches\" with %s); \"colours\" shares them among the %d threads\n",
                  contact.solver == ContactSolver::blocks ? "solver \"blocks\""
                                                          : "acceleration \"conjugate_gradients\"",
-                 max_threads());
+                 Simulation::threads());
   if (t.outran_margin > 0)
     std::fprintf(stderr,
                  "  warning: %lld times a body moved farther in one step than its contact margin "
@@ -89,25 +83,13 @@ void print_summary(const Model& model, const State& state, const Workspace& w, d
                  t.outran_margin);
 }
 
-// The penalty model is explicit: above a tenth of the contact's period it goes unstable.
-void warn_about_time_step(const std::string& scene_file, const Model& model) {
-  const SceneDef& scene = model.scene;
-  if (scene.contact.model != ContactModel::penalty) return;
-  const Real limit = penalty_time_step_limit(model);
-  if (scene.time_step > limit)
-    std::cerr << scene_file << ": warning: time_step " << scene.time_step
-              << " is above the penalty contact's stable limit " << limit
-              << " (a tenth of the contact oscillation period 2 pi sqrt(m/k) of the lightest "
-                 "body); bodies may bounce off or pass through each other\n";
-}
-
 }  // namespace
 
 int run_command(const std::string& scene_file, const std::string& out_dir, bool contacts,
                 bool resume, bool hash, int threads) {
 #ifdef TEM_MPI
   // Started by mpirun: the run is shared among its ranks (run_distributed.cpp).
-  if (distributed::launched_by_mpi())
+  if (launched_by_mpi())
     return run_distributed_command(scene_file, out_dir, contacts, resume, hash, threads);
 #endif
   // One thread unless asked: several `tem run` side by side (a parameter sweep, ctest -j) each
@@ -121,7 +103,7 @@ int run_command(const std::string& scene_file, const std::string& out_dir, bool 
               << cores << " cores; using " << cores << " (the results are the same)\n";
     threads = cores;
   }
-  set_threads(threads);
+  Simulation::set_threads(threads);
   // The run goes through the public API: `tem run` is a client of tem::Simulation like any
   // other program. A scene's problems come back one per line, as load_model prints them.
   std::optional<Simulation> run;
@@ -136,14 +118,13 @@ int run_command(const std::string& scene_file, const std::string& out_dir, bool 
     return kExitBadInput;
   }
   // Warnings: the accepted defects, and (on a fresh start) bodies overlapping at the start.
-  for (const std::string& warning : resume ? run->impl().model.warnings : run->warnings())
+  for (const std::string& warning : run->warnings())
     std::cerr << scene_file << ": warning: " << warning << "\n";
-  warn_about_time_step(scene_file, run->impl().model);
   if (resume)
     std::cerr << "tem run: resuming at step " << run->step_count() << " (t = " << run->time()
               << " s) from " << out_dir << "/checkpoint.bin\n";
   Simulation& sim = *run;
-  const Model& model = sim.impl().model;
+  const SceneDef& scene = sim.scene();
   const long long total_steps = sim.total_steps();
   const std::string checkpoint_file = out_dir + "/checkpoint.bin";
 
@@ -191,7 +172,7 @@ int run_command(const std::string& scene_file, const std::string& out_dir, bool 
     progress.finish();
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    print_summary(model, sim.impl().state, sim.impl().workspace, wall);
+    print_summary(sim, wall);
     for (const Simulation::InletDelivery& d : sim.inlet_deliveries())
       std::cerr << "  inlet '" << d.name << "': placed " << d.placed << " of the " << d.due
                 << " copies due by t = " << sim.time() << " s (" << d.count << " in all)"
@@ -201,9 +182,9 @@ int run_command(const std::string& scene_file, const std::string& out_dir, bool 
                 << "\n";
     std::cerr << "tem run: results in " << out_dir << "/ (bodies.csv, energy.csv"
               << (contacts ? ", contacts.csv" : "")
-              << (model.bodies_come_and_go ? ", removed.csv" : "")
-              << (model.scene.sensors.empty() ? "" : ", sensors.csv") << ", scene.json, checkpoint.bin"
-              << (model.scene.output.paraview ? ", tem.pvd and paraview/ for ParaView" : "")
+              << (sim.bodies_come_and_go() ? ", removed.csv" : "")
+              << (scene.sensors.empty() ? "" : ", sensors.csv") << ", scene.json, checkpoint.bin"
+              << (scene.output.paraview ? ", tem.pvd and paraview/ for ParaView" : "")
               << ")\n";
     if (hash) std::cout << "hash: " << sim.state_hash_hex() << std::endl;
   } catch (const std::exception& e) {

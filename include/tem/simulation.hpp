@@ -22,6 +22,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <iosfwd>
 #include <memory>
 #include <string>
 #include <vector>
@@ -62,6 +63,37 @@ struct SystemEnergies {
   Real total() const { return kinetic + potential; }
 };
 
+// What the steps taken so far cost and how the contact solver fared, summed over the steps
+// since the Simulation was made or resumed (`tem run`'s closing summary prints them).
+struct RunStatistics {
+  long long steps = 0;
+  // Seconds in each stage of the step (docs/method.md), summed over the steps.
+  double broad_phase = 0;
+  double narrow_phase = 0;  // narrow phase and patches
+  double forces = 0;        // the contact solve
+  double integrate = 0;
+  // The contact solver's iterations (Gauss-Seidel sweeps, or Newton iterations with
+  // contact.solver "newton"), summed over the steps, and the most one step took.
+  long long solver_iterations = 0;
+  int max_solver_iterations = 0;
+  long long unconverged_steps = 0;  // steps whose solve stopped at its iteration limit
+  long long scaled_steps = 0;       // steps whose impulses were scaled down to add no energy
+  long long corrected_steps = 0;    // steps whose overlap correction moved bodies apart
+  // contact.solver "newton": islands not converged within newton_iteration_limit iterations,
+  // solved by the row solver instead.
+  long long fallback_islands = 0;
+  int newton_iteration_limit = 0;
+  long long outran_margin = 0;  // bodies that moved farther in a step than their contact margin
+  long long substeps = 0;       // summed over the steps, and the most one step took
+  int max_substeps = 0;
+  long long patches = 0;  // contact patches and their points, summed over the steps
+  long long points = 0;
+  // Block pairs tested with contact before overlap, those that took last step's features and
+  // those kept apart by last step's separating face (contact.pair_cache), summed.
+  long long block_pairs = 0, cached_pairs = 0, apart_pairs = 0;
+  long long sleeping_bodies = 0;  // asleep now (`sleep`)
+};
+
 class Simulation {
  public:
   // Loaders. Bad input throws SceneLoadError with every problem found.
@@ -90,6 +122,8 @@ class Simulation {
   // it. Process-wide: every Simulation stepped from any thread uses it from then on (without
   // a call, OpenMP's default, OMP_NUM_THREADS or one per core).
   static void set_threads(int threads);
+  // The threads a step shares its work among now.
+  static int threads();
 
   // --- inlets (docs/processes.md) ---------------------------------------------------------
   // Per inlet, in the scene's order: the copies it has placed, those that had fallen due by
@@ -108,6 +142,9 @@ class Simulation {
   // Changes whenever bodies come or go (inlets, outlets, removed_at): indices and names read
   // before such a change may no longer match.
   long long population_version() const;
+  // Whether bodies can come and go in this scene (inlets, outlets, removed_at): then
+  // body_count() may change between steps, and recording writes removed.csv.
+  bool bodies_come_and_go() const;
   const std::string& body_name(int body) const;
   int body_index(const std::string& name) const;  // -1 when there is none
   bool body_fixed(int body) const;
@@ -150,6 +187,10 @@ class Simulation {
   // --- results --------------------------------------------------------------------------
   // The patches of the last step taken (empty before the first).
   std::vector<Contact> contacts() const;
+  // Finds the contact patches of the current state without stepping and writes them as
+  // contacts.csv's header and rows (docs/interface.md; forces zero); returns how many.
+  std::size_t write_contacts_csv(std::ostream& out) const;
+  RunStatistics run_statistics() const;
   SystemEnergies energies() const;
   // A 64-bit hash of the state's exact bits, as `tem run --hash` prints it (hex: state_hash_hex).
   std::uint64_t state_hash() const;
@@ -176,11 +217,13 @@ class Simulation {
 
   // The scene as loaded, defaults filled in.
   const SceneDef& scene() const;
-  // Warnings about accepted defects of the scene (a non-convex block allowed, deep initial
-  // overlap), one line each.
+  // Warnings about accepted defects of the scene (a non-convex block allowed, a penalty
+  // contact's time step above its stable limit, inlets that cannot deliver; and, when the
+  // simulation starts at the scene's start rather than at a checkpoint, bodies overlapping
+  // deeply at the start), one line each.
   const std::vector<std::string>& warnings() const;
 
-  // For tools built on TEM's internals (the CLI's summary): the implementation object.
+  // For TEM's own tests and the MPI driver, built on its internals: the implementation object.
   struct Impl;
   Impl& impl() { return *impl_; }
   const Impl& impl() const { return *impl_; }

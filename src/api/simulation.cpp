@@ -5,38 +5,24 @@
 #include <cmath>
 #include <iomanip>
 #include <sstream>
-#include <thread>
 #include <stdexcept>
+#include <thread>
 
+#include "api/scene_loading.hpp"
 #include "api/simulation_impl.hpp"
-#include "contact/initial_overlap.hpp"
+#include "contact/detect_contacts.hpp"
+#include "forces/semm_newton/semm_newton.hpp"
 #include "io/checkpoint.hpp"
+#include "io/contacts_csv.hpp"
 #include "io/scene_reader.hpp"
 #include "io/scene_writer.hpp"
+#include "simulation/sleep.hpp"
 #include "support/parallel.hpp"
 #include "world/inlet_delivery.hpp"
 #include "world/state_hash.hpp"
 
 namespace tem {
 namespace {
-
-Model build_or_throw(const SceneReadResult& read, const std::string& origin) {
-  if (!read.ok()) {
-    std::string message;
-    for (const SceneProblem& p : read.problems) {
-      if (!message.empty()) message += '\n';
-      message += format_problem(origin, p);
-    }
-    throw SceneLoadError(message);
-  }
-  // Geometric problems (a flat point cloud, a non-convex block) show up only when the blocks
-  // are built; the core names the shape's JSON path in them.
-  try {
-    return build_model(read.scene);
-  } catch (const SceneError& e) {
-    throw SceneLoadError(format_problem(origin, {e.path(), e.reason()}));
-  }
-}
 
 // The thread count asked for through the API, for every thread that steps: OpenMP's own
 // setting belongs to the thread that made it, so a Simulation stepped from another thread (a
@@ -68,8 +54,7 @@ Checkpoint read_matching_checkpoint(const Model& model, const std::string& path,
 
 Simulation::Impl::Impl(Model m) : model(std::move(m)) {
   state = initial_state(model);
-  warnings = model.warnings;
-  for (const InitialOverlap& o : deep_initial_overlaps(model)) warnings.push_back(describe(model, o));
+  warnings = start_warnings(model, /*at_start=*/true);
   const size_t n = model.bodies.size();
   workspace.loads.force.assign(n, Vec3::Zero());
   workspace.loads.torque.assign(n, Vec3::Zero());
@@ -122,6 +107,7 @@ void Simulation::Impl::refresh_views() {
 
 void Simulation::Impl::restore(const Checkpoint& checkpoint) {
   state = checkpoint.state;
+  warnings = start_warnings(model, /*at_start=*/false);  // the start's overlaps are past
   if (model.bodies_come_and_go) restore_population(model, initial_bodies, state);
   const size_t n = model.bodies.size();
   workspace.loads.force.assign(n, Vec3::Zero());
@@ -190,13 +176,13 @@ Simulation& Simulation::operator=(Simulation&&) noexcept = default;
 Simulation::~Simulation() = default;
 
 Simulation Simulation::load(const std::string& scene_file) {
-  return Simulation(std::make_unique<Impl>(build_or_throw(read_scene_file(scene_file), scene_file)));
+  return Simulation(std::make_unique<Impl>(load_model_or_throw(scene_file)));
 }
 
 Simulation Simulation::from_json(const std::string& scene_json, const std::string& origin) {
   SceneReadResult read = read_scene_text(scene_json, origin);
   load_scene_meshes(read);
-  return Simulation(std::make_unique<Impl>(build_or_throw(read, origin)));
+  return Simulation(std::make_unique<Impl>(build_model_or_throw(read, origin)));
 }
 
 Simulation Simulation::from_scene(const SceneDef& scene) {
@@ -253,6 +239,8 @@ void Simulation::set_threads(int threads) {
   tem::set_threads(threads);
 }
 
+int Simulation::threads() { return max_threads(); }
+
 // --- bodies --------------------------------------------------------------------------------
 
 namespace {
@@ -268,6 +256,7 @@ int Simulation::body_capacity() const {
   return static_cast<int>(population_capacity(impl_->model));
 }
 long long Simulation::population_version() const { return impl_->model.population_version; }
+bool Simulation::bodies_come_and_go() const { return impl_->model.bodies_come_and_go; }
 const std::string& Simulation::body_name(int body) const {
   check_body(impl_->model, body);
   return impl_->model.bodies[body].name;
@@ -382,6 +371,43 @@ std::vector<Contact> Simulation::contacts() const {
     out.push_back(c);
   }
   return out;
+}
+
+std::size_t Simulation::write_contacts_csv(std::ostream& out) const {
+  const Impl& m = *impl_;
+  ContactWorkspace scratch;
+  std::vector<ContactPatch> patches;
+  detect_contacts(m.model, m.state, patch_variant(m.model.scene), scratch, patches);
+  out << kContactsCsvHeader << "\n";
+  write_contact_rows(out, m.model, m.state.time, patches);
+  return patches.size();
+}
+
+RunStatistics Simulation::run_statistics() const {
+  const StageTimes& t = impl_->workspace.times;
+  RunStatistics r;
+  r.steps = t.steps;
+  r.broad_phase = t.broad_phase;
+  r.narrow_phase = t.narrow_phase;
+  r.forces = t.forces;
+  r.integrate = t.integrate;
+  r.solver_iterations = t.sweeps;
+  r.max_solver_iterations = t.max_sweeps;
+  r.unconverged_steps = t.unconverged_steps;
+  r.scaled_steps = t.scaled_steps;
+  r.corrected_steps = t.corrected_steps;
+  r.fallback_islands = t.fallback_islands;
+  r.newton_iteration_limit = kMaxNewtonIterations;
+  r.outran_margin = t.outran_margin;
+  r.substeps = t.substeps;
+  r.max_substeps = t.max_substeps;
+  r.patches = t.patches;
+  r.points = t.points;
+  r.block_pairs = t.block_pairs;
+  r.cached_pairs = t.cached_pairs;
+  r.apart_pairs = t.apart_pairs;
+  r.sleeping_bodies = sleeping_bodies(impl_->state);
+  return r;
 }
 
 SystemEnergies Simulation::energies() const {

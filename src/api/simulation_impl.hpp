@@ -1,6 +1,6 @@
 // What a tem::Simulation holds (include/tem/simulation.hpp): the Model, the State, the step's
-// Workspace, and the recording of `tem run`'s files. Visible to TEM's own programs (the CLI's
-// summary reads the stage times) but not installed.
+// Workspace, and the recording of `tem run`'s files. Visible to the rest of src/api/ (the MPI
+// run, the reports) and to TEM's tests, but not installed.
 #pragma once
 
 #include <memory>

@@ -1,6 +1,6 @@
-// MPI for `tem run` under mpirun (architecture.md: MPI stays in src/distributed/). TEM starts
-// MPI only when a launcher started it: the same binary runs serially, without touching MPI,
-// when started on its own.
+// MPI for `tem run` under mpirun (MPI stays in src/distributed/ and src/api/distributed_run.cpp,
+// behind include/tem/distributed.hpp). TEM starts MPI only when a launcher started it: the same
+// binary runs serially, without touching MPI, when started on its own.
 #pragma once
 
 #include <mpi.h>

@@ -12,7 +12,7 @@
 //
 // Forces are explicit, from the state at the start of the step; the time step must resolve the
 // contact's oscillation, period 2 pi sqrt(m / k) for the lightest body. `penalty_time_step_limit`
-// gives a tenth of it, and `tem run` warns when the scene's time step is above.
+// gives a tenth of it, and a scene whose time step is above is warned of when it loads.
 #pragma once
 
 #include <vector>

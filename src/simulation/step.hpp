@@ -74,7 +74,9 @@ void find_contact_forces(const Model& model, State& state, Workspace& workspace)
 // called on this same state, and the workspace's external loads.
 void advance(const Model& model, State& state, Workspace& workspace);
 
-// One whole step: find_contact_forces, then advance.
+// Stages 1-6 of one step: find_contact_forces, then advance; no population, no hooks. For
+// tests of the core on a fixed set of bodies; drivers and benchmarks take take_step
+// (step_loop.hpp), the step users run.
 void step(const Model& model, State& state, Workspace& workspace);
 
 // The first body whose state is not finite, or -1.
