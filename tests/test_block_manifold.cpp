@@ -269,11 +269,11 @@ Real brute_gap(const Block& a, const BlockPose& pa, const Block& b, const BlockP
 
 // Two coins (and a coin and a brick) at random attitudes, one moved towards the other until
 // they are within a margin of touching or slightly overlap: the search must find every such
-// pair. Before issue 20's fix a face preferred over a nearly equal edge axis whose clip came out
+// pair. Without it, a face preferred over a nearly equal edge axis whose clip came out
 // empty (edge across edge, corner past the rim) dropped the pair as apart: in the 1,000-coin
 // pour at dt 5e-4 with four sub-steps such pairs overlapped 20 times in 0.2 s by more than 1 %
-// of a coin's size, up to 11.7 % (tem_overlap_census). With the code before the fix this test
-// finds 7 of the 909 pairs missed.
+// of a coin's size, up to 11.7 % (tem_overlap_census), and this test found 7 of its 909 pairs
+// missed.
 TEST(BlockManifold, NoPairWithinTheMarginIsMissed) {
   const Block coin(regular_prism(6, 0.15, 0.1, Axis::z));
   const Block brick(box(Vec3(0.3, 0.12, 0.08)));

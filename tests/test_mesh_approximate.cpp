@@ -1,4 +1,4 @@
-// The approximate cutter (approximate_decomposition, issue 12): convex meshes stay one block,
+// The approximate cutter (approximate_decomposition): convex meshes stay one block,
 // boxes are cut exactly, holes stay open, blocks never overlap and cover the mesh, the result
 // is the same every run; and the plane cut underneath keeps volumes and corners.
 #include <gtest/gtest.h>
@@ -151,14 +151,12 @@ TEST(MeshApprox, HoledCubeKeepsItsHole) {
   report("holed_cube_blocks", static_cast<Real>(d.blocks.size()));
 }
 
-// Bounds on the torus's over-coverage and Hausdorff distance. Measured when the distance-led
-// cutting and the merge pass came in (issue 21): 3.49 %, and 1.45 % of the diagonal (5.32 % and
-// 2.6 % before); 3.17 % and 1.26 % with tilted planes and pieces; 2.72 % and 1.26 % since
-// neighbours of different cells merge and the last cuts are chosen without the look ahead;
-// 1.71 % and 0.64 % since the planes are moved. For scale, 16 equal sectors would exceed the
-// mesh by 1.45 %. The cutter is deterministic, so the volume bound is the measured figure
-// rounded up to a whole per cent: a change that cuts worse fails here. The distance bound is issue 21's target, 2 %: the figure is found to 0.25 % of the
-// diagonal (1.45 + 0.25 < 2), so it cannot fail by imprecision alone.
+// Bounds on the torus's over-coverage and Hausdorff distance. Measured: 1.71 %, and 0.64 % of
+// the diagonal; for scale, 16 equal sectors would exceed the mesh by 1.45 %. The cutter is
+// deterministic, so the volume bound is the measured figure rounded up to a whole per cent: a
+// change that cuts worse fails here. The distance bound is the cutter's target, 2 %: the
+// figure is found to 0.25 % of the diagonal (0.64 + 0.25 < 2), so it cannot fail by
+// imprecision alone.
 constexpr Real kTorusOverCoverage = 0.02;
 constexpr Real kTorusHausdorff = 0.02;
 

@@ -1,8 +1,7 @@
 // The exact cut of a mesh into convex blocks (CGAL's Nef-polyhedron convex decomposition): the
 // blocks are convex, do not overlap and have the mesh's own volume, centre and second moment
 // (from its surface, independently of any block); the paper's ring cut from its mesh has the
-// ring primitive's mass properties to round-off; CAD-like solids of revolution (issue 21's
-// spools), also with float coordinates as read from a file, are cut; bad meshes give MeshError.
+// ring primitive's mass properties to round-off; CAD-like solids of revolution (spools),, also with float coordinates as read from a file, are cut; bad meshes give MeshError.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -228,7 +227,7 @@ TEST(MeshExact, PaperRingMatchesTheRingPrimitive) {
   report("exact.paper_ring.vs_primitive.second_moment_error", moment_error);
 }
 
-// Issue 21: CAD-like solids of revolution that CGAL cuts into pieces with corners bent by the
+// CAD-like solids of revolution that CGAL cuts into pieces with corners bent by the
 // mesh's rounding (its cones' quads are planar only to rounding). Every one must be cut. With
 // double vertices the bends are 1e-16 and the blocks keep the mesh's volume to 1e-12.
 struct RevolvedPart {
@@ -274,7 +273,7 @@ TEST(MeshExact, RevolvedPartsAreCut) {
 
 // The same parts as `tem mesh` reads them from a file: vertices rounded to 32-bit floats, so
 // cones' quads bend by about 1e-8 and CGAL's pieces have corners bent by less than Block's
-// tolerance (the spools of issue 21 were refused for these). Their blocks leave out those
+// tolerance (a Block refuses such corners). Their blocks leave out those
 // corners; the volume this changes is bounded by the cutter (1e-9 of the mesh's, kExact here).
 TEST(MeshExact, RevolvedPartsReadAsFloatsAreCut) {
   for (const RevolvedPart& part : revolved_parts())

@@ -305,8 +305,7 @@ TEST(PhysicsScene, MeshCupHoldsADie) {
 // leaves alone (kOverlapSlop of a staple's size; the energy rule may leave a little more where
 // a resting body dissipates too little to pay for the lift). While they land at up to 4.3 m/s
 // (2.2 mm, a fifth of the thickness, per step of 5e-4 s) overlaps are deeper: reported, and
-// judged at rest. (Before issue 20 raised the slop from 1e-4 to 5e-4 the bound was a thousandth
-// of the thickness, four times that slop; it is now twice the slop.)
+// judged at rest, to twice the overlap correction's slop.
 TEST(PhysicsScene, MeshStaplePourComesToRest) {
   const Model model = load_scene("scenes/mesh_pour.json");
   State state = initial_state(model);

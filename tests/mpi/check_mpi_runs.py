@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""`mpirun -np N tem run` against one process (issue 14's checks; ctest runs them when TEM is
+"""`mpirun -np N tem run` against one process (ctest runs these checks when TEM is
 built with TEM_MPI). Usage: check_mpi_runs.py MODE TEM MPIEXEC SCENE WORKDIR
 
   identical  the penalty pour at 1, 2 and 3 ranks writes bodies.csv, energy.csv and

@@ -175,7 +175,7 @@ inline TriangleMesh revolved_mesh(const std::vector<std::array<Real, 2>>& profil
   return mesh;
 }
 
-// A spool (the shape of issue 21): two flanges of radius 1 and thicknesses `bottom` and `top`
+// A spool (a CAD-like solid of revolution): two flanges of radius 1 and thicknesses `bottom` and `top`
 // on a hub of radius `hub`, length 1 in all, a bore of radius `bore` (0: none), the flanges'
 // outer rims chamfered by `chamfer` (0: none) and the hub joined to each flange by a quarter
 // circle of radius `fillet` in `fillet_steps` steps (0: a sharp corner).
