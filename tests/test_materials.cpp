@@ -9,7 +9,7 @@
 #include <cmath>
 #include <string>
 
-#include "forces/penalty.hpp"
+#include "forces/penalty/penalty.hpp"
 #include "support/simulate.hpp"
 
 namespace tem {

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "forces/semm.hpp"
-#include "forces/semm_rows.hpp"
+#include "forces/semm_rows/semm_rows.hpp"
 
 namespace tem {
 namespace test_overlap_correction {

@@ -229,8 +229,9 @@ TEST(PairCache, CheckpointKeepsANodePastTheRim) {
   EXPECT_EQ(back.features[0].feature_b, 3);
 
   std::string bytes = testing_support::checkpoint_bytes(file);
-  // Version 4 ends before the records past the rim (and version 6's list of files, a count 0).
-  const size_t rim_records = 8 + 2 * sizeof(Real), files = 8;
+  // Version 4 ends before the records past the rim (and version 6's list of files and version
+  // 7's contact memory, two counts of 0).
+  const size_t rim_records = 8 + 2 * sizeof(Real), files = 8 + 8;
   ASSERT_GT(bytes.size(), rim_records + files + 8 + 12);
   bytes.resize(bytes.size() - 8 - files - rim_records);
   testing_support::write_checkpoint_bytes(file, bytes, 4);

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "forces/penalty.hpp"
+#include "forces/penalty/penalty.hpp"
 #include "support/simulate.hpp"
 
 namespace tem {

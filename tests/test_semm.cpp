@@ -7,6 +7,7 @@
 #include "dynamics/integrator.hpp"
 #include "forces/body_response.hpp"
 #include "forces/semm.hpp"
+#include "forces/semm_paper/semm_paper.hpp"
 #include "geometry/primitives.hpp"
 #include "simulation/step.hpp"
 

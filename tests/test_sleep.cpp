@@ -298,9 +298,9 @@ TEST(Sleep, CheckpointOfVersionTwoIsStillRead) {
   write_checkpoint(file, c);
   std::string bytes = testing_support::checkpoint_bytes(file);
   // Version 2 ends before the sleep records (and version 4's empty pair cache, version 5's
-  // records of it and version 6's list of files, three counts of 0).
+  // records of it, version 6's list of files and version 7's contact memory, four counts of 0).
   const size_t sleep_records = 8 + 2 * (sizeof(Real) + sizeof(bool) + sizeof(long long));
-  const size_t features = 8 + 8 + 8;
+  const size_t features = 8 + 8 + 8 + 8;
   ASSERT_GT(bytes.size(), sleep_records + features + 8 + 12);
   bytes.resize(bytes.size() - 8 - features - sleep_records);
   testing_support::write_checkpoint_bytes(file, bytes, 2);

@@ -3,7 +3,7 @@
 #include <sstream>
 
 #include "contact/initial_overlap.hpp"
-#include "forces/penalty.hpp"
+#include "forces/force_model.hpp"
 #include "tem/simulation.hpp"
 
 namespace tem {
@@ -35,18 +35,7 @@ std::vector<std::string> start_warnings(const Model& model, bool at_start) {
   if (at_start)
     for (const InitialOverlap& o : deep_initial_overlaps(model))
       warnings.push_back(describe(model, o));
-  // The penalty model is explicit: above a tenth of the contact's period it goes unstable.
-  if (model.scene.contact.model == ContactModel::penalty) {
-    const Real limit = penalty_time_step_limit(model);
-    if (model.scene.time_step > limit) {
-      std::ostringstream w;
-      w << "time_step " << model.scene.time_step
-        << " is above the penalty contact's stable limit " << limit
-        << " (a tenth of the contact oscillation period 2 pi sqrt(m/k) of the lightest body); "
-           "bodies may bounce off or pass through each other";
-      warnings.push_back(w.str());
-    }
-  }
+  force_model(model.scene.contact).add_warnings(model, warnings);
   return warnings;
 }
 

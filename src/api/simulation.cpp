@@ -114,7 +114,7 @@ void Simulation::Impl::restore(const Checkpoint& checkpoint) {
   workspace.loads.torque.assign(n, Vec3::Zero());
   removed.clear();
   reserve_capacity();
-  restore_memory(checkpoint, workspace.forces, workspace.contact.features);
+  restore_memory(checkpoint, model.scene.contact, workspace.forces, workspace.contact.features);
   refresh_views();
 }
 

@@ -14,7 +14,7 @@ void write_distributed_checkpoint(const Domain& domain, const Model& model, cons
   State whole;
   ContactForces memory;
   domain.gather_state(model, state, whole);
-  domain.gather_memory(w.forces, memory);
+  domain.gather_memory(model, w.forces, memory);
   if (domain.rank() != 0) return;
   const OutputSizes sizes = plan.output ? plan.output->sizes() : OutputSizes{0, 0, -1};
   write_checkpoint(plan.checkpoint_file, make_checkpoint(model.scene, whole, memory, {}, sizes));
@@ -85,14 +85,8 @@ bool any_rank(MPI_Comm comm, bool mine) {
 }  // namespace
 
 std::string unsupported_reason(const SceneDef& scene) {
-  if (scene.contact.model == ContactModel::semm_paper)
-    return "over MPI ranks TEM runs the penalty and the default SEMM contact models; "
-           "contact.model 'semm-paper' (the paper's direct solve) is not distributed: run this "
-           "scene without mpirun (threads: --threads N)";
-  if (scene.contact.model == ContactModel::semm && scene.contact.solver != ContactSolver::rows)
-    return std::string("over MPI ranks SEMM runs with contact.solver 'rows' (the default); '") +
-           (scene.contact.solver == ContactSolver::blocks ? "blocks" : "newton") +
-           "' is not distributed: run this scene without mpirun, or with the rows solver";
+  const std::string model_reason = force_model(scene.contact).not_distributed_because();
+  if (!model_reason.empty()) return model_reason;
   // Each sub-step's solve would need the ghosts' forces returned between the sub-steps.
   if (scene.contact.substeps > 1 || scene.contact.max_substeps > 1)
     return "over MPI ranks TEM does not yet run sub-steps (contact.substeps or "

@@ -24,31 +24,28 @@ Aabb body_bounds(const Model& model, int body, const BodyState& s, Real reach) {
   return box;
 }
 
-// Where each body's contact memory (as body A) lies in `springs`, sorted by body A: [first,
-// last) per body.
-std::vector<std::pair<size_t, size_t>> memory_runs(const std::vector<PenaltySpring>& springs,
+// Where each body's contact memory (as body A) lies in `records`, in one process's order:
+// [first, last) per body.
+std::vector<std::pair<size_t, size_t>> memory_runs(const std::vector<MemoryRecord>& records,
                                                    size_t bodies) {
   std::vector<std::pair<size_t, size_t>> runs(bodies, {0, 0});
-  for (size_t k = 0; k < springs.size();) {
+  for (size_t k = 0; k < records.size();) {
     size_t last = k;
-    while (last < springs.size() && springs[last].body_a == springs[k].body_a) ++last;
-    runs[springs[k].body_a] = {k, last};
+    while (last < records.size() && records[last].body_a == records[k].body_a) ++last;
+    runs[records[k].body_a] = {k, last};
     k = last;
   }
   return runs;
 }
 
-// A body as it travels: its index, its state and the memory of its contacts as body A (the
-// penalty springs; SEMM's patches when it changes owner).
+// A body as it travels: its index, its state and the memory of its contacts as body A (those
+// of `records` in `run`; none for a SEMM body lent as a ghost).
 void pack_body(Packer& out, int body, const BodyState& state,
-               const std::vector<PenaltySpring>& springs, std::pair<size_t, size_t> run,
-               const std::vector<const MemoryPatch*>& patches = {}) {
+               const std::vector<MemoryRecord>& records, std::pair<size_t, size_t> run) {
   out.put(body);
   out.put(state);
   out.put(static_cast<double>(run.second - run.first));
-  for (size_t k = run.first; k < run.second; ++k) out.put(springs[k]);
-  out.put(static_cast<double>(patches.size()));
-  for (const MemoryPatch* p : patches) pack(out, *p);
+  for (size_t k = run.first; k < run.second; ++k) pack(out, records[k]);
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -89,29 +86,26 @@ void Domain::start(const Model& model, const State& state, Workspace& w) {
   w.subset.resident = w.subset.owned;
   owner_.assign(static_cast<size_t>(n), -1);
   for (int b : owned_ids_) owner_[b] = rank_;
-  solved_once_ = model.scene.contact.model != ContactModel::penalty;
+  solved_once_ = force_model(model.scene.contact).solves_across_ranks();
   w.subset.solved_once = solved_once_;
   if (solved_once_) {
     shared_ = std::make_unique<SharedSolve>(comm_, w.subset, owner_);
     w.sync = shared_.get();
   }
-  keep_owned_memory(w);
+  keep_owned_memory(model, w);
 }
 
-void Domain::keep_owned_memory(Workspace& w) const {
-  std::erase_if(w.forces.springs,
-                [&](const PenaltySpring& s) { return !w.subset.owned[s.body_a]; });
-  if (!solved_once_) return;
-  // SEMM's memory is all this rank's but after a start from a checkpoint every rank read.
-  const bool all_own =
-      std::all_of(w.forces.points.begin(), w.forces.points.end(),
-                  [&](const ContactPoint& c) { return w.subset.owned[c.body_a] != 0; });
-  if (all_own) return;
-  std::vector<MemoryPatch> patches = memory_patches(w.forces);
-  std::erase_if(patches, [&](const MemoryPatch& p) {
-    return p.friction.body_a < 0 || !w.subset.owned[p.friction.body_a];
-  });
-  set_memory_patches(std::move(patches), w.forces);
+void Domain::keep_owned_memory(const Model& model, Workspace& w) const {
+  // The memory of the contacts of bodies this rank no longer owns: the copies it evaluated for
+  // another rank (the penalty model), or after a start from a checkpoint every rank read.
+  const ForceModel& force = force_model(model.scene.contact);
+  std::vector<MemoryRecord> records;
+  force.save_memory(w.forces, records);
+  const size_t before = records.size();
+  std::erase_if(records, [&](const MemoryRecord& r) { return !w.subset.owned[r.body_a]; });
+  if (records.size() == before) return;
+  sort_records(records);
+  force.load_memory(records, w.forces);
 }
 
 void Domain::balance_if_needed(const Model& model, State& state, Workspace& w) {
@@ -140,28 +134,21 @@ void Domain::balance_if_needed(const Model& model, State& state, Workspace& w) {
 
 void Domain::exchange(const Model& model, State& state, Workspace& w) {
   const auto start = std::chrono::steady_clock::now();
-  keep_owned_memory(w);  // the copies of contacts this rank evaluated for another go
+  keep_owned_memory(model, w);  // the copies of contacts this rank evaluated for another go
   migrate(model, state, w);
-  sort_springs(w.forces.springs);  // borders sends each body's springs as one run
   borders(model, state, w);
-  sort_springs(w.forces.springs);
   stats_.seconds += seconds_since(start);
 }
 
 void Domain::migrate(const Model& model, State& state, Workspace& w) {
+  const ForceModel& force = force_model(model.scene.contact);
   std::vector<std::vector<double>> send(static_cast<size_t>(size_));
   std::vector<char> leaving(model.bodies.size(), 0);
   std::vector<int> kept;
-  const auto runs = memory_runs(w.forces.springs, model.bodies.size());
-  // SEMM's memory, patch by patch, found per body A.
-  std::vector<MemoryPatch> patches;
-  std::vector<std::vector<const MemoryPatch*>> patches_of;
-  if (solved_once_) {
-    patches = memory_patches(w.forces);
-    patches_of.resize(model.bodies.size());
-    for (const MemoryPatch& p : patches) patches_of[p.friction.body_a].push_back(&p);
-  }
-  static const std::vector<const MemoryPatch*> none;
+  std::vector<MemoryRecord> records;
+  force.save_memory(w.forces, records);
+  sort_records(records);  // each body's records as one run
+  const auto runs = memory_runs(records, model.bodies.size());
   for (int b : owned_ids_) {
     const int to = partition_.owner_of(state.bodies[b].x);
     if (to == rank_) {
@@ -169,34 +156,29 @@ void Domain::migrate(const Model& model, State& state, Workspace& w) {
       continue;
     }
     Packer out(send[static_cast<size_t>(to)]);
-    pack_body(out, b, state.bodies[b], w.forces.springs, runs[b],
-              solved_once_ ? patches_of[b] : none);
+    pack_body(out, b, state.bodies[b], records, runs[b]);
     leaving[b] = 1;
     w.subset.owned[b] = 0;
     owner_[b] = to;
   }
-  std::erase_if(w.forces.springs, [&](const PenaltySpring& s) { return leaving[s.body_a]; });
-  if (solved_once_) {
-    std::erase_if(patches, [&](const MemoryPatch& p) { return leaving[p.friction.body_a]; });
-    arrived_.clear();
-  }
-  for (const auto& [b, from] : deliver(send, state, w)) {
+  std::erase_if(records, [&](const MemoryRecord& r) { return leaving[r.body_a] != 0; });
+  arrived_.clear();
+  for (const auto& [b, from] : deliver(send, state)) {
     w.subset.owned[b] = 1;
     owner_[b] = rank_;
     kept.push_back(b);
     ++stats_.migrated;
   }
-  if (solved_once_) {
-    for (MemoryPatch& p : arrived_) patches.push_back(std::move(p));
-    arrived_.clear();
-    set_memory_patches(std::move(patches), w.forces);
-  }
+  for (MemoryRecord& r : arrived_) records.push_back(std::move(r));
+  arrived_.clear();
+  sort_records(records);
+  force.load_memory(records, w.forces);
   std::sort(kept.begin(), kept.end());
   owned_ids_ = std::move(kept);
 }
 
 std::vector<std::pair<int, int>> Domain::deliver(const std::vector<std::vector<double>>& send,
-                                                 State& state, Workspace& w) {
+                                                 State& state) {
   for (const std::vector<double>& message : send)
     if (!message.empty()) {
       stats_.bytes_sent += static_cast<long long>(message.size() * sizeof(double));
@@ -209,10 +191,8 @@ std::vector<std::pair<int, int>> Domain::deliver(const std::vector<std::vector<d
     while (!in.done()) {
       const int b = in.integer();
       state.bodies[b] = in.body_state();
-      const int springs = in.integer();
-      for (int k = 0; k < springs; ++k) w.forces.springs.push_back(in.spring());
-      const int patches = in.integer();
-      for (int k = 0; k < patches; ++k) arrived_.push_back(unpack_memory_patch(in));
+      const int records = in.integer();
+      for (int k = 0; k < records; ++k) arrived_.push_back(unpack_memory_record(in));
       bodies.push_back({b, r});
     }
   }
@@ -243,22 +223,33 @@ void Domain::borders(const Model& model, State& state, Workspace& w) {
     if (box.overlaps(mine)) neighbours.push_back({r, box});
   }
   std::vector<std::vector<double>> send(static_cast<size_t>(size_));
-  const auto runs = memory_runs(w.forces.springs, model.bodies.size());
+  // A model whose ranks find the forces of their own bodies' contacts (the penalty model) finds
+  // those with the ghosts too: the ghosts bring their memory.
+  const ForceModel& force = force_model(model.scene.contact);
+  std::vector<MemoryRecord> records;
+  if (!solved_once_) force.save_memory(w.forces, records);
+  const auto runs = memory_runs(records, model.bodies.size());
   for (size_t i = 0; i < owned_ids_.size(); ++i) {
     const int b = owned_ids_[i];
     for (const auto& [r, box] : neighbours) {
       if (!bounds[i].overlaps(box)) continue;
       Packer out(send[static_cast<size_t>(r)]);
-      pack_body(out, b, state.bodies[b], w.forces.springs, runs[b]);
+      pack_body(out, b, state.bodies[b], records, runs[b]);
     }
   }
   ghost_ids_.clear();
-  for (const auto& [b, from] : deliver(send, state, w)) {
+  arrived_.clear();
+  for (const auto& [b, from] : deliver(send, state)) {
     w.subset.resident[b] = 1;
     owner_[b] = from;
     ghost_ids_.push_back(b);
     ++stats_.ghosts;
   }
+  if (arrived_.empty()) return;
+  for (MemoryRecord& r : arrived_) records.push_back(std::move(r));
+  arrived_.clear();
+  sort_records(records);
+  force.load_memory(records, w.forces);
 }
 
 void Domain::return_ghost_forces(Workspace& w) {
@@ -356,31 +347,27 @@ void Domain::gather_contacts(const Workspace& w, std::vector<ContactPatch>& patc
   }
 }
 
-void Domain::gather_memory(const ContactForces& forces, ContactForces& whole) const {
+void Domain::gather_memory(const Model& model, const ContactForces& forces,
+                           ContactForces& whole) const {
   std::vector<double> mine;
   Packer out(mine);
-  // Called where a step begins, before exchange(): the springs of the last step, this rank's
-  // (body A owned) and the copies it evaluated for other ranks.
-  std::vector<const PenaltySpring*> springs;
-  for (const PenaltySpring& s : forces.springs)
-    if (std::binary_search(owned_ids_.begin(), owned_ids_.end(), s.body_a)) springs.push_back(&s);
-  out.put(static_cast<double>(springs.size()));
-  for (const PenaltySpring* s : springs) out.put(*s);
-  // SEMM's memory is all this rank's own (each contact on one rank).
-  if (solved_once_)
-    for (const MemoryPatch& p : memory_patches(forces)) pack(out, p);
+  // Called where a step begins, before exchange(): the memory of the last step's contacts of
+  // this rank's bodies as body A (not the copies it evaluated for other ranks).
+  const ForceModel& force = force_model(model.scene.contact);
+  std::vector<MemoryRecord> records;
+  force.save_memory(forces, records);
+  for (const MemoryRecord& r : records)
+    if (std::binary_search(owned_ids_.begin(), owned_ids_.end(), r.body_a)) pack(out, r);
   const std::vector<std::vector<double>> all = gather_to_root(comm_, mine);
   whole = ContactForces{};
   if (rank_ != 0) return;
-  std::vector<MemoryPatch> patches;
+  records.clear();
   for (const std::vector<double>& part : all) {
     Unpacker in(part);
-    const int count = in.integer();
-    for (int k = 0; k < count; ++k) whole.springs.push_back(in.spring());
-    while (!in.done()) patches.push_back(unpack_memory_patch(in));
+    while (!in.done()) records.push_back(unpack_memory_record(in));
   }
-  sort_springs(whole.springs);
-  set_memory_patches(std::move(patches), whole);
+  sort_records(records);
+  force.load_memory(records, whole);
 }
 
 int Domain::first_non_finite_body(const State& state) const {

@@ -69,7 +69,7 @@ class Domain {
                        std::vector<PatchForce>& forces) const;
   // The contact memory this rank owns (the last step's), gathered on rank 0 in one process's
   // order: what a one-process checkpoint holds.
-  void gather_memory(const ContactForces& forces, ContactForces& whole) const;
+  void gather_memory(const Model& model, const ContactForces& forces, ContactForces& whole) const;
 
   // The first body, in scene order, whose owned state is not finite on any rank, or -1.
   int first_non_finite_body(const State& state) const;
@@ -84,13 +84,13 @@ class Domain {
   double balance_tolerance = 1.2;
 
  private:
-  void keep_owned_memory(Workspace& workspace) const;
+  void keep_owned_memory(const Model& model, Workspace& workspace) const;
   void migrate(const Model& model, State& state, Workspace& workspace);
   void borders(const Model& model, State& state, Workspace& workspace);
-  // Sends send[r] to rank r; takes in the bodies the others sent (state and memory) and
-  // returns each with the rank that sent it.
+  // Sends send[r] to rank r; takes in the bodies the others sent (their state, and their
+  // memory appended to arrived_) and returns each with the rank that sent it.
   std::vector<std::pair<int, int>> deliver(const std::vector<std::vector<double>>& send,
-                                           State& state, Workspace& workspace);
+                                           State& state);
 
   MPI_Comm comm_;
   int rank_ = 0, size_ = 1;
@@ -100,7 +100,7 @@ class Domain {
   std::vector<int> owner_;      // the rank of every resident body
   bool solved_once_ = false;    // SEMM: each contact on one rank, solved by all together
   std::unique_ptr<SharedSolve> shared_;
-  std::vector<MemoryPatch> arrived_;  // SEMM memory that came with migrating bodies
+  std::vector<MemoryRecord> arrived_;  // memory that came with bodies from other ranks
   long long steps_since_balance_ = 0;
   ExchangeStats stats_;
   // Scratch.

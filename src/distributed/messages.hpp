@@ -1,5 +1,5 @@
-// What ranks send each other, as flat arrays of doubles: a body's state, a penalty spring, a
-// contact patch's output fields. Integers travel as doubles (exact below 2^53). One
+// What ranks send each other, as flat arrays of doubles: a body's state, contact memory records
+// (contact_memory.hpp), a contact patch's output fields. Integers travel as doubles (exact below 2^53). One
 // all-to-all of counts and one of the data per exchange (exchange_with_all).
 #pragma once
 
@@ -9,8 +9,6 @@
 
 #include "contact/contact_patch.hpp"
 #include "dynamics/body_state.hpp"
-#include "forces/contact_forces.hpp"
-#include "forces/penalty.hpp"
 
 namespace tem::distributed {
 
@@ -24,9 +22,6 @@ class Packer {
     for (int i = 0; i < 9; ++i) out_.push_back(m.data()[i]);
   }
   void put(const BodyState& s);
-  void put(const PenaltySpring& s);
-  void put(const ContactPoint& c);
-  void put(const PatchFriction& p);
 
  private:
   std::vector<double>& out_;
@@ -50,9 +45,6 @@ class Unpacker {
     return m;
   }
   BodyState body_state();
-  PenaltySpring spring();
-  ContactPoint point();
-  PatchFriction friction();
 
  private:
   const std::vector<double>& in_;

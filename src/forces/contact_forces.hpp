@@ -1,6 +1,6 @@
 // Step 4 of a simulation step (architecture.md): from the contact patches to the force and
-// torque on every body, by the scene's force model. One small interface; the models are
-// chosen by name (contact.model) and share the contact points and the body responses.
+// torque on every body, by the scene's force model (force_model.hpp), and the results and
+// memory the models keep between steps.
 #pragma once
 
 #include <vector>
@@ -8,10 +8,11 @@
 #include "contact/contact_patch.hpp"
 #include "forces/body_response.hpp"
 #include "forces/contact_points.hpp"
-#include "forces/penalty.hpp"
+#include "forces/force_model.hpp"
+#include "forces/penalty/penalty.hpp"
 #include "forces/semm.hpp"
-#include "forces/semm_rows.hpp"
 #include "forces/semm_newton/semm_newton.hpp"
+#include "forces/semm_rows/semm_rows.hpp"
 #include "world/model.hpp"
 
 namespace tem {
@@ -22,7 +23,8 @@ struct PatchForce {
   Real tangential = 0;
 };
 
-// Scratch and results of the force stage, reused between steps.
+// Scratch and results of the force stage, reused between steps, and each model's memory (its
+// own fields, read and written through its ForceModel by everything outside its folder).
 struct ContactForces {
   std::vector<ContactPoint> points;
   std::vector<BodyResponse> responses;

@@ -13,8 +13,7 @@
 //   then the minimiser of its twist clamped likewise. Each sweep lowers T; it stops when no impulse changed by more than
 //   `tolerance` of the largest, and reports the sweeps and that last change.
 //
-// - semm-paper: the paper's K S = D (eqs. 30-31, 36-39): normal direction only, one point per
-//   patch, impulses of either sign, one dense symmetric solve.
+// - semm-paper: the paper's K S = D (eqs. 30-31, 36-39), in semm_paper/.
 #pragma once
 
 #include <vector>
@@ -179,11 +178,5 @@ inline void copy_patch_result(const PatchFriction& solved,
   patch.roll1 = solved.roll1;
   patch.roll2 = solved.roll2;
 }
-
-// The paper's unconstrained normal-only SEMM: K S = D, solved directly.
-SolverReport solve_semm_paper(const std::vector<ContactPoint>& points,
-                              const std::vector<BodyResponse>& bodies,
-                              const std::vector<Vec3>& centres,
-                              std::vector<PointImpulse>& impulses);
 
 }  // namespace tem

@@ -27,7 +27,7 @@ constexpr char kMagic[8] = {'T', 'E', 'M', 'C', 'K', 'P', 'T', '\n'};
 // Version 4 is still read, with none past the rim: such pairs are searched again.
 // 6: the files the scene read and their content hashes (ReadFile), after the pair cache.
 // Version 5 is still read, with no files to compare.
-constexpr std::uint32_t kVersion = 6;
+constexpr std::uint32_t kVersion = 7;
 constexpr std::uint32_t kOldestVersion = 2;
 
 // Appends values as their bytes: numbers, and vectors and matrices as their coefficients.
@@ -195,21 +195,22 @@ Checkpoint make_checkpoint(const SceneDef& scene, const State& state, const Cont
   c.files = scene_files(scene);
   c.sizes = sizes;
   c.state = state;
-  c.points = forces.points;
-  c.impulses = forces.impulses;
-  c.friction = forces.friction;
-  c.springs = forces.springs;
+  force_model(scene.contact).save_memory(forces, c.memory);
   c.features = features;
   return c;
 }
 
-void restore_memory(const Checkpoint& checkpoint, ContactForces& forces,
+void restore_memory(const Checkpoint& checkpoint, const ContactDef& contact, ContactForces& forces,
                     std::vector<CachedFeatures>& features) {
   features = checkpoint.features;
-  forces.points = checkpoint.points;
-  forces.impulses = checkpoint.impulses;
-  forces.friction = checkpoint.friction;
-  forces.springs = checkpoint.springs;
+  if (checkpoint.version != 0 && checkpoint.version < 7) {
+    forces.points = checkpoint.points;
+    forces.impulses = checkpoint.impulses;
+    forces.friction = checkpoint.friction;
+    forces.springs = checkpoint.springs;
+    return;
+  }
+  force_model(contact).load_memory(checkpoint.memory, forces);
 }
 
 void write_checkpoint(const std::string& path, const Checkpoint& c) {
@@ -230,10 +231,8 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   write_records(w, c.state.inlets);
   write_records(w, c.state.sensors);
   w.value(c.state.driven_work);
-  write_records(w, c.points);
-  write_records(w, c.impulses);
-  write_records(w, c.friction);
-  write_records(w, c.springs);
+  // The memory as ContactForces held it before version 7: empty since (the records at the end).
+  for (int array = 0; array < 4; ++array) w.value(std::uint64_t{0});
   w.value(static_cast<std::uint64_t>(c.state.bodies.size()));
   for (const BodyState& b : c.state.bodies) {
     w.value(b.rest_time);
@@ -248,6 +247,16 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
     w.value(static_cast<std::uint64_t>(f.path.size()));
     w.bytes().append(f.path);
     w.value(f.content_hash);
+  }
+  // The contact memory (version 7 on): per record its keys, then its numbers.
+  w.value(static_cast<std::uint64_t>(c.memory.size()));
+  for (const MemoryRecord& m : c.memory) {
+    w.value(static_cast<std::int32_t>(m.body_a));
+    w.value(static_cast<std::int32_t>(m.body_b));
+    w.value(static_cast<std::int32_t>(m.wall));
+    w.value(static_cast<std::uint64_t>(m.values.size()));
+    w.bytes().append(reinterpret_cast<const char*>(m.values.data()),
+                     m.values.size() * sizeof(double));
   }
   w.value(fnv1a(w.bytes().data(), w.bytes().size()));
 
@@ -312,6 +321,7 @@ Checkpoint read_checkpoint(const std::string& path) {
   c.state.inlets = read_records<InletProgress>(r);
   c.state.sensors = read_records<SensorTotals>(r);
   c.state.driven_work = r.value<Real>();
+  c.version = version;
   c.points = read_records<ContactPoint>(r);
   c.impulses = read_records<PointImpulse>(r);
   c.friction = read_records<PatchFriction>(r);
@@ -346,6 +356,22 @@ Checkpoint read_checkpoint(const std::string& path) {
     for (ReadFile& f : c.files) {
       f.path = r.text(r.count(1));
       r.value(f.content_hash);
+    }
+  }
+  if (version >= 7) {
+    c.memory.resize(r.count(3 * sizeof(std::int32_t) + sizeof(std::uint64_t)));
+    const auto bodies = static_cast<std::int64_t>(c.state.bodies.size());
+    for (MemoryRecord& m : c.memory) {
+      const auto a = r.value<std::int32_t>(), b = r.value<std::int32_t>(),
+                 wall = r.value<std::int32_t>();
+      if (a < 0 || a >= bodies || b < -1 || b >= bodies || wall < -1 || (b >= 0) == (wall >= 0))
+        throw std::runtime_error(path + ": the checkpoint's contact memory names a body or "
+                                 "wall that is not there");
+      m.body_a = a;
+      m.body_b = b;
+      m.wall = wall;
+      m.values.resize(r.count(sizeof(double)));
+      r.value(m.values);
     }
   }
   if (!r.at_end()) throw std::runtime_error(path + ": the checkpoint has trailing bytes");

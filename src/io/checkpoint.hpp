@@ -48,8 +48,12 @@ struct Checkpoint {
   std::vector<ReadFile> files;
   OutputSizes sizes;
   State state;
-  // The contact memory the next step starts from (ContactForces: points, impulses, friction,
-  // springs of the last step).
+  std::uint32_t version = 0;  // of the file it was read from; 0: made here
+  // The contact memory the next step starts from: the force model's records (force_model.hpp;
+  // version 7 on).
+  std::vector<MemoryRecord> memory;
+  // Before version 7, the memory as ContactForces held it (points, impulses, friction, springs
+  // of the last step), put back as it was.
   std::vector<ContactPoint> points;
   std::vector<PointImpulse> impulses;
   std::vector<PatchFriction> friction;
@@ -76,8 +80,9 @@ void require_same_files(const std::vector<ReadFile>& taken, const std::vector<Re
 Checkpoint make_checkpoint(const SceneDef& scene, const State& state, const ContactForces& forces,
                            const std::vector<CachedFeatures>& features, const OutputSizes& sizes);
 
-// Puts a checkpoint's memory back into a fresh ContactForces and pair cache.
-void restore_memory(const Checkpoint& checkpoint, ContactForces& forces,
+// Puts a checkpoint's memory back into a fresh ContactForces (by the force model of `contact`,
+// which throws std::runtime_error for records not its own) and pair cache.
+void restore_memory(const Checkpoint& checkpoint, const ContactDef& contact, ContactForces& forces,
                     std::vector<CachedFeatures>& features);
 
 // Writes atomically (temporary file, then rename). Throws std::runtime_error naming the file.

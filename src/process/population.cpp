@@ -62,7 +62,8 @@ bool room_for(const Model& model, const State& state, const std::vector<Real>& s
 // Renumbers the contact memory after removal (map: old body -> new, -1 for gone), dropping
 // every entry that touched a body that left. Monotone renumbering keeps the pair order the
 // warm start and the penalty springs rely on.
-void renumber_memory(const std::vector<int>& map, const PopulationLinks& links) {
+void renumber_memory(const Model& model, const std::vector<int>& map,
+                     const PopulationLinks& links) {
   auto gone = [&](int a, int b) { return map[a] < 0 || (b >= 0 && map[b] < 0); };
   auto renumber = [&](int& a, int& b) {
     a = map[a];
@@ -92,27 +93,13 @@ void renumber_memory(const std::vector<int>& map, const PopulationLinks& links) 
     for (CachedFeatures& e : *links.features) renumber(e.body_a, e.body_b);
   }
   if (!links.forces) return;
-  ContactForces& f = *links.forces;
-  const bool with_impulses = f.impulses.size() == f.points.size();
-  size_t next = 0;
-  for (size_t i = 0; i < f.points.size(); ++i) {
-    if (gone(f.points[i].body_a, f.points[i].body_b)) continue;
-    f.points[next] = f.points[i];
-    renumber(f.points[next].body_a, f.points[next].body_b);
-    const int p = f.points[next].patch;
-    f.points[next].patch = p >= 0 && static_cast<size_t>(p) < patch_map.size() ? patch_map[p] : p;
-    if (with_impulses) f.impulses[next] = f.impulses[i];
-    ++next;
-  }
-  f.points.resize(next);
-  if (with_impulses) f.impulses.resize(next);
-  std::erase_if(f.friction, [&](const PatchFriction& p) { return gone(p.body_a, p.body_b); });
-  for (PatchFriction& p : f.friction) renumber(p.body_a, p.body_b);
-  // (first, last) of the patch friction index this step's points; the next step reads only
-  // the pairs, centres and impulses of this memory (warm_start.cpp), so they are left as they are.
-  std::erase_if(f.springs, [&](const PenaltySpring& s) { return gone(s.body_a, s.body_b); });
-  for (PenaltySpring& s : f.springs) renumber(s.body_a, s.body_b);
-  f.match_radius.clear();  // per body: rebuilt for the new numbering
+  // The force model's memory (force_model.hpp): its records of the bodies gone dropped, the
+  // others renumbered.
+  const ForceModel& force = force_model(model.scene.contact);
+  std::vector<MemoryRecord> memory;
+  force.save_memory(*links.forces, memory);
+  renumber_records(map, memory);
+  force.load_memory(memory, *links.forces);
 }
 
 // Takes away the bodies that leave at state.time; whether any did.
@@ -159,7 +146,7 @@ bool remove_leaving(Model& model, State& state, const PopulationLinks& links,
     loads->torque.resize(kept);
     loads->update_active();
   }
-  renumber_memory(map, links);
+  renumber_memory(model, map, links);
   return true;
 }
 

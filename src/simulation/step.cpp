@@ -176,7 +176,7 @@ void advance(const Model& model, State& state, Workspace& w) {
   bool corrected = false, unconverged = false, scaled = false;
   int sweeps = 0;
   // The overlap correction's budget (integrate_substep): the energy the step starts from.
-  bool correct = scene.contact.model == ContactModel::semm &&
+  bool correct = force_model(scene.contact).corrects_overlap() &&
                  scene.integrator == IntegratorKind::default_ && !w.patches.empty();
   if (w.sync) correct = w.sync->sum(correct ? 1 : 0) > 0;  // all ranks, or none
   Real budget = correct ? system_energies(model, state, w.sync).total() : 0;

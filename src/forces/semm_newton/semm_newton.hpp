@@ -35,7 +35,7 @@
 #include <vector>
 
 #include "forces/semm.hpp"
-#include "forces/semm_rows.hpp"
+#include "forces/semm_rows/semm_rows.hpp"
 #include "forces/semm_newton/island_factor.hpp"
 
 namespace tem {

@@ -1,4 +1,4 @@
-#include "forces/penalty.hpp"
+#include "forces/penalty/penalty.hpp"
 
 #include "forces/body_response.hpp"
 #include "forces/materials.hpp"

@@ -1,4 +1,4 @@
-#include "forces/semm_rows.hpp"
+#include "forces/semm_rows/semm_rows.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,30 @@
+#include "forces/semm_blocks/blocks_model.hpp"
+
+#include "forces/semm_step.hpp"
+
+namespace tem {
+namespace {
+
+class BlocksModel final : public DefaultSemmModel {
+ public:
+  void compute(const ForceStep& step, ContactForces& f) const override {
+    if (!begin_semm_step(step, f)) return;
+    const SolverSettings settings = begin_default_semm(step, f);
+    f.solver = solve_semm(f.points, f.approach, f.responses, f.centres, settings, f.friction,
+                          f.impulses);
+    semm_impulses_to_forces(step.dt, true, f);
+  }
+  std::string not_distributed_because() const override {
+    return "over MPI ranks SEMM runs with contact.solver 'rows' (the default); 'blocks' is not "
+           "distributed: run this scene without mpirun, or with the rows solver";
+  }
+};
+
+}  // namespace
+
+const ForceModel& semm_blocks_model() {
+  static const BlocksModel model;
+  return model;
+}
+
+}  // namespace tem
