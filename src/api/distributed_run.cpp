@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "api/output_steps.hpp"
 #include "api/simulation_impl.hpp"
 #include "distributed/distributed_run.hpp"
 #include "distributed/mpi_session.hpp"
@@ -14,10 +15,6 @@
 
 namespace tem {
 namespace {
-
-long long steps_per(Real interval, Real dt) {
-  return std::max<long long>(1, std::llround(interval / dt));
-}
 
 // The exchange figures of every rank, reduced onto rank 0.
 void gather_figures(const distributed::Domain& domain, DistributedRun& run) {

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "api/output_steps.hpp"
 #include "api/scene_loading.hpp"
 #include "api/simulation_impl.hpp"
 #include "contact/detect_contacts.hpp"
@@ -28,10 +29,6 @@ namespace {
 // setting belongs to the thread that made it, so a Simulation stepped from another thread (a
 // Python worker thread, say) would otherwise run at OpenMP's default. <= 0: never asked.
 std::atomic<int> requested_threads{0};
-
-long long steps_per(Real interval, Real dt) {
-  return std::max<long long>(1, std::llround(interval / dt));
-}
 
 // The checkpoint of `path`, checked against the scene.
 Checkpoint read_matching_checkpoint(const Model& model, const std::string& path,

@@ -2,31 +2,22 @@
 
 #include <cstdio>
 
+#include "support/fnv1a.hpp"
+
 namespace tem {
 namespace {
 
-constexpr std::uint64_t kOffset = 14695981039346656037ull;
-constexpr std::uint64_t kPrime = 1099511628211ull;
-
-void mix(std::uint64_t& h, const void* data, std::size_t size) {
-  const auto* bytes = static_cast<const unsigned char*>(data);
-  for (std::size_t i = 0; i < size; ++i) {
-    h ^= bytes[i];
-    h *= kPrime;
-  }
-}
-
 void mix(std::uint64_t& h, Real value) {
   value += 0.0;  // -0 and +0 are the same state
-  mix(h, &value, sizeof value);
+  fnv1a_mix(h, &value, sizeof value);
 }
 
 }  // namespace
 
 std::uint64_t state_hash(const State& state) {
-  std::uint64_t h = kOffset;
+  std::uint64_t h = kFnv1aOffset;
   const long long step = state.step;
-  mix(h, &step, sizeof step);
+  fnv1a_mix(h, &step, sizeof step);
   for (const BodyState& b : state.bodies) {
     for (int k = 0; k < 3; ++k) mix(h, b.x[k]);
     for (int k = 0; k < 3; ++k) mix(h, b.v[k]);
@@ -41,7 +32,7 @@ std::uint64_t state_hash(const State& state) {
     renumbered = state.tags[i].id != static_cast<long long>(i) || state.tags[i].inlet >= 0;
   if (renumbered) {
     for (const BodyTag& t : state.tags) {
-      mix(h, &t.id, sizeof t.id);
+      fnv1a_mix(h, &t.id, sizeof t.id);
       mix(h, t.scale);
     }
   }

@@ -8,6 +8,8 @@
 #include <iterator>
 #include <string>
 
+#include "support/fnv1a.hpp"
+
 namespace tem::testing_support {
 
 // The whole file, checksum included.
@@ -21,11 +23,7 @@ inline std::string checkpoint_bytes(const std::string& path) {
 inline void write_checkpoint_bytes(const std::string& path, std::string bytes,
                                    std::uint32_t version) {
   std::memcpy(&bytes[8], &version, sizeof version);
-  std::uint64_t h = 14695981039346656037ull;
-  for (const char ch : bytes) {
-    h ^= static_cast<unsigned char>(ch);
-    h *= 1099511628211ull;
-  }
+  const std::uint64_t h = fnv1a(bytes.data(), bytes.size());
   bytes.append(reinterpret_cast<const char*>(&h), sizeof h);
   std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
 }
