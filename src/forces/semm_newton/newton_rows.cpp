@@ -34,7 +34,8 @@ RowResponse disc(const Row& row, const Vec2& u) {
 RowResponse respond(const Row& row, const Vec2& u, Real band) {
   if (row.kind != Row::Kind::normal) return disc(row, u);
   RowResponse out;
-  const Real short_by = row.target - u.x();  // how far the row is from its target
+  // How far the row is from its target, less what its last impulse already answers.
+  const Real short_by = row.target - u.x() + row.centre * row.regularisation;
   if (short_by > 0) {
     out.impulse.x() = short_by / row.regularisation;
     out.value = short_by * short_by / (2 * row.regularisation);

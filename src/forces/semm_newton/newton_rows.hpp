@@ -4,8 +4,11 @@
 // is the row's impulse gamma(u) and whose (generalised) Hessian G(u) is positive semi-definite.
 //
 // Four kinds, as the row solver has them (semm_rows.hpp):
-// - normal, one per contact point: gamma = max(0, (target - u) / R), phi = R gamma^2 / 2. In
-//   the limit R -> 0 this is the constraint u >= target with a normal impulse >= 0.
+// - normal, one per contact point: gamma = max(0, c + (target - u) / R), phi = R gamma^2 / 2,
+//   with c the point's impulse of the last step (its proximal centre; 0 for a new contact). In
+//   the limit R -> 0 this is the constraint u >= target with a normal impulse >= 0; at finite R
+//   it leaves u - target = R (c - gamma), nothing for a contact that pushes as it did: a body at
+//   rest does not sink by R gamma a step (with c = 0 a box on the floor sank at 7.1e-7 cm/s).
 // - slip (2-D, at the patch centre), twist (1-D, about the normal) and rolling (2-D, angular
 //   about the tangents): a disc of radius r, the friction limit. gamma = -u / R inside the
 //   disc's stick zone |u| <= r R, else -r u / |u| (Coulomb: the most the limit allows, against
@@ -42,6 +45,7 @@ struct Row {
   Vec2 constant = Vec2::Zero();     // u's part from bodies that are not unknowns, surface slip
   Real target = 0;                  // normal rows: the least u
   Real regularisation = 0;          // R
+  Real centre = 0;                  // normal rows: c, the last step's impulse
   Real radius = 0;                  // disc rows: the friction limit r (set by the solver)
   int patch = 0;                    // the contact patch of the row
   int point = -1;                   // normal rows: the contact point

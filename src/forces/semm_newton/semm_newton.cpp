@@ -448,7 +448,10 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
   std::vector<Real>& normal = s.normal_impulse;
   normal.assign(rows.size(), 0);
   for (size_t r = 0; r < rows.size(); ++r)
-    if (rows[r].kind == Row::Kind::normal) normal[r] = impulses[rows[r].point].normal;
+    if (rows[r].kind == Row::Kind::normal) {
+      normal[r] = impulses[rows[r].point].normal;
+      rows[r].centre = normal[r];
+    }
   Real change = 0, largest = 0;
   set_limits(problem, rows, normal, change, largest);
   NewtonState warm;
