@@ -49,6 +49,11 @@ void print_summary(const Simulation& sim, double wall) {
                  "  Newton: %lld islands not converged in %d iterations were solved by the row "
                  "solver instead\n",
                  t.fallback_islands, t.newton_iteration_limit);
+  if (t.regularised_islands > 0)
+    std::fprintf(stderr,
+                 "  Newton: %lld islands kept the regularised answer (friction not made exact "
+                 "within %d more iterations)\n",
+                 t.regularised_islands, t.newton_polish_limit);
   if (t.corrected_steps > 0)
     std::fprintf(stderr, "  overlap correction: bodies moved apart in %lld of %lld steps\n",
                  t.corrected_steps, t.steps);

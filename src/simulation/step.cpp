@@ -194,6 +194,7 @@ void advance(const Model& model, State& state, Workspace& w) {
     unconverged = unconverged || !w.forces.solver.converged;
     scaled = scaled || w.forces.solver.scale < 1;
     w.times.fallback_islands += w.forces.solver.fallback_islands;
+    w.times.regularised_islands += w.forces.solver.regularised_islands;
     corrected = integrate_substep(model, state, w, h, s + 1 == substeps, step_start_time, s,
                                   correct ? &budget : nullptr) ||
                 corrected;

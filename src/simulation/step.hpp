@@ -27,6 +27,7 @@ struct StageTimes {
   long long sweeps = 0;
   long long unconverged_steps = 0;
   long long fallback_islands = 0;  // contact.solver "newton": islands left to the row solver
+  long long regularised_islands = 0;  // and islands that kept the regularised answer
   long long scaled_steps = 0;  // steps whose impulses were scaled down to add no energy
   long long corrected_steps = 0;  // steps whose overlap correction moved bodies
   long long outran_margin = 0;    // bodies that moved farther in a step than their reach

@@ -4,20 +4,26 @@
 // is the row's impulse gamma(u) and whose (generalised) Hessian G(u) is positive semi-definite.
 //
 // Four kinds, as the row solver has them (semm_rows.hpp):
-// - normal, one per contact point: gamma = max(0, c + (target - u) / R), phi = R gamma^2 / 2,
-//   with c the point's impulse of the last step (its proximal centre; 0 for a new contact). In
-//   the limit R -> 0 this is the constraint u >= target with a normal impulse >= 0; at finite R
-//   it leaves u - target = R (c - gamma), nothing for a contact that pushes as it did: a body at
-//   rest does not sink by R gamma a step (with c = 0 a box on the floor sank at 7.1e-7 cm/s).
+// - normal, one per contact point: gamma = max(0, c + (target - u) / R), phi = R gamma^2 / 2.
+//   In the limit R -> 0 this is the constraint u >= target with a normal impulse >= 0; at finite
+//   R it leaves u - target = R (c - gamma).
 // - slip (2-D, at the patch centre), twist (1-D, about the normal) and rolling (2-D, angular
-//   about the tangents): a disc of radius r, the friction limit. gamma = -u / R inside the
-//   disc's stick zone |u| <= r R, else -r u / |u| (Coulomb: the most the limit allows, against
-//   the slip); phi is the matching Huber function.
+//   about the tangents): a disc of radius r, the friction limit. gamma = P(c - u / R), P the
+//   projection on the disc: inside it the row sticks (its curvature 1/R), on its rim it slips
+//   (the most the limit allows, against the slip; curvature only across the slip). phi is the
+//   matching Moreau envelope, max over gamma in the disc of -gamma.u - R |gamma - c|^2 / 2.
+//   A row `held` in stick answers gamma = c - u / R whatever its size (the polish,
+//   semm_newton.hpp).
 //
-// R is a regularisation of 1e-6 of the row's own Delassus diagonal w = J W J^T (kRegularisation):
-// small enough that the velocity error it leaves (R gamma, a millionth of the velocity change the
-// row makes) is far below anything a test or a user could see, large enough that the Hessian
-// stays positive definite and well conditioned for a direct factorisation.
+// c, the row's proximal centre, is the impulse the row is drawn to: the last step's impulse,
+// so that a contact that pushes (or holds) as it did keeps no regularisation error, and a body at
+// rest neither sinks nor creeps (with c = 0 a box on the floor sank at 7.1e-7 cm/s).
+//
+// R is a fraction of the row's own Delassus diagonal w = J W J^T: kNormalRegularisation for the
+// normal rows and kFrictionRegularisation for the others while Newton finds the regularised
+// answer (soft enough that the active set of a pour's island settles in a few iterations;
+// MuJoCo's default impedance gives R = 0.11 w), kExactRegularisation for friction in the polish
+// (a millionth: the creep it leaves is far below anything a test or a user could see).
 #pragma once
 
 #include <Eigen/Dense>
@@ -33,7 +39,9 @@ using Vec6 = Eigen::Matrix<Real, 6, 1>;
 using Mat6 = Eigen::Matrix<Real, 6, 6>;
 using Jacobian = Eigen::Matrix<Real, 2, 6>;  // rows beyond the row's dimension are zero
 
-inline constexpr Real kRegularisation = 1e-6;
+inline constexpr Real kNormalRegularisation = 1e-3;
+inline constexpr Real kFrictionRegularisation = 1e-1;
+inline constexpr Real kExactRegularisation = 1e-6;
 
 struct Row {
   enum class Kind : std::uint8_t { normal, slip, twist, rolling };
@@ -45,7 +53,8 @@ struct Row {
   Vec2 constant = Vec2::Zero();     // u's part from bodies that are not unknowns, surface slip
   Real target = 0;                  // normal rows: the least u
   Real regularisation = 0;          // R
-  Real centre = 0;                  // normal rows: c, the last step's impulse
+  Real delassus = 0;                // w, the row's Delassus diagonal (mean over its components)
+  Vec2 centre = Vec2::Zero();       // c, the proximal centre (normal rows: x only)
   Real radius = 0;                  // disc rows: the friction limit r (set by the solver)
   int patch = 0;                    // the contact patch of the row
   int point = -1;                   // normal rows: the contact point
@@ -54,6 +63,7 @@ struct Row {
   // Disc rows: whether the row asks for its start velocity mirrored instead of none (its
   // constant then holds + start): semm_newton.cpp, the energy rule of friction.
   bool mirrored = false;
+  bool held = false;  // disc rows: held in stick (the polish)
 };
 
 // The impulse gamma(u) of a row and its generalised Hessian G(u) (dim x dim, top left of a 2x2).

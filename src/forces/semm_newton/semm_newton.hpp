@@ -1,35 +1,32 @@
 // SEMM solved by Newton's method on the primal problem (contact.solver "newton", opt-in;
-// method.md, "SEMM by Newton"): the same contact impulses as the row solver's (semm_rows.hpp) —
-// the ones that minimise the system's energy at the next step, normal impulses >= 0, each
-// patch's friction, twist and rolling resistance inside their Coulomb limits — with an
-// iteration count that does not grow with the height of a column. Islands of a pour still stall
-// (the redundant points of face contacts, method.md) and fall back to the row solver.
+// method.md, "SEMM by Newton"): the impulses that minimise the system's energy at the next step,
+// normal impulses >= 0, each patch's friction, twist and rolling resistance inside their Coulomb
+// limits, with an iteration count that does not grow with the height of a column.
 //
 // The unknowns are the bodies' pseudo velocities y after the step (body_response.hpp), six per
 // body; the objective is
 //   l(y) = 1/2 (y - y_free).M (y - y_free) + sum over rows phi(J y),
 // M = diag(mass, Q^-1) the metric in which SEMM's energy is measured and phi each row's convex
-// term (newton_rows.hpp). Its minimiser is the answer of the dual problem the row solver sweeps,
-// regularised by R (newton_rows.hpp): at the minimum M (y - y_free) = sum J^T gamma, so the
-// impulses gamma are read off the rows. Each Newton iteration solves H dy = -grad l with H the
-// whole island's Hessian, factorised (island_factor.hpp): the top grain's weight reaches the
-// floor in one iteration. An exact line search along dy (l is convex and piecewise smooth; its
-// slope along dy is monotone) never lets l rise. Islands, bodies joined by contacts, are solved
-// on their own and shared among the threads, each on one thread: the same bits at any thread
-// count.
+// term (newton_rows.hpp), regularised by R and drawn to the row's last impulse. At the minimum
+// M (y - y_free) = sum J^T gamma, so the impulses gamma are read off the rows. Each Newton
+// iteration solves H dy = -grad l with H the whole island's Hessian, factorised
+// (island_factor.hpp): the top grain's weight reaches the floor in one iteration. An exact line
+// search along dy (l is convex and piecewise smooth; its slope along dy is monotone) never lets
+// l rise. Islands, bodies joined by contacts, are solved on their own and shared among the
+// threads, each on one thread: the same bits at any thread count.
 //
-// Coulomb friction is exact, not the convex cone of SAP or MuJoCo, which lets a sliding body rise
-// off what it slides on by mu |slip| dt per step: each patch's friction limit mu (sum of its normal
-// impulses) is held fixed while Newton solves (a disc of fixed radius, a convex problem: Tresca
-// friction), then set from the new normal impulses, until the limits no longer change by more
-// than the tolerance (a fixed point, as the row solver's sweeps reach it). It starts from the
-// last step's impulses (warm start), so a pile at rest needs one pass.
+// Two stages per island (semm_newton.cpp, solve_island):
+// - the regularised answer: soft rows (R 1e-3 w normal, 1e-1 w friction), friction limits from
+//   the last step's normal impulses and then once from the answer's; a pour's islands converge
+//   in a few iterations where stiff rows stalled (docs/benchmarks.md);
+// - the polish: each friction row held in the stick or slip the regularised answer found, R
+//   1e-6 w, solved again; rows held in stick beyond their limit are let go. Converged, friction
+//   is exact Coulomb (no lift of a sliding body, no creep at the friction angle); not converged
+//   within kMaxPolishIterations, the regularised answer stands.
 //
-// Stopping rule: a Newton pass stops when the momentum the impulses fail to give the bodies,
+// Stopping rule: Newton stops when the momentum the impulses fail to give the bodies,
 // |grad l| in the norm of M^-1, is at most `tolerance` times the impulses' own size
-// (|y - y_free|_M), or at round-off (semm_newton.cpp, balanced); the fixed point stops when no
-// patch's friction limit changed by more than `tolerance` of the largest and no row took the
-// energy rule.
+// (|y - y_free|_M), or at round-off (semm_newton.cpp, balanced).
 #pragma once
 
 #include <vector>
@@ -49,6 +46,7 @@ struct NewtonSolverMemory {
     newton::IslandFactor factor;
     int iterations = 0;  // Newton iterations of its last solve
     bool converged = true;
+    bool polished = false;  // its friction made exact (semm_newton.cpp, the polish)
     Real scale = 1;
   };
   std::vector<Island> islands;
@@ -67,10 +65,11 @@ struct NewtonSolverMemory {
   } fallback;
 };
 
-// The largest number of Newton iterations (all passes of the friction fixed point together)
-// and of passes one island's solve may take; reached, the solve reports not converged.
+// The largest number of Newton iterations one island's regularised answer may take (all its
+// passes together; reached, the island is left to the row solver), and how many more its
+// polish may take (reached, the regularised answer stands).
 inline constexpr int kMaxNewtonIterations = 30;
-inline constexpr int kMaxFrictionPasses = 30;
+inline constexpr int kMaxPolishIterations = 10;
 
 // Default SEMM by Newton's method. Arguments as solve_semm_rows (semm_rows.hpp): `start` each
 // point's normal relative velocity at the start of the step, `targets` from normal_targets();
