@@ -51,9 +51,9 @@ void print_summary(const Simulation& sim, double wall) {
                  t.fallback_islands, t.newton_iteration_limit);
   if (t.regularised_islands > 0)
     std::fprintf(stderr,
-                 "  Newton: %lld islands kept the regularised answer (friction not made exact "
-                 "within %d more iterations)\n",
-                 t.regularised_islands, t.newton_polish_limit);
+                 "  Newton: %lld islands kept the regularised answer (the polish to exact "
+                 "friction did not converge)\n",
+                 t.regularised_islands);
   if (t.corrected_steps > 0)
     std::fprintf(stderr, "  overlap correction: bodies moved apart in %lld of %lld steps\n",
                  t.corrected_steps, t.steps);

@@ -421,8 +421,14 @@ Vector mobility_times(const Island& island, const std::vector<BodyResponse>& bod
 inline constexpr Real kRoundOff = 100 * std::numeric_limits<Real>::epsilon() /
                                   newton::kExactRegularisation;
 
-bool balanced(const Island& island, const std::vector<BodyResponse>& bodies,
-              const IslandProblem& problem, const NewtonState& s, Real tolerance) {
+// The gradient's size in the norm of M^-1 (`residual`) and what it must fall to (`allowed`).
+struct Balance {
+  Real residual = 0, allowed = 0;
+  bool met() const { return residual <= allowed; }
+};
+
+Balance balance(const Island& island, const std::vector<BodyResponse>& bodies,
+                const IslandProblem& problem, const NewtonState& s, Real tolerance) {
   Real residual = 0, made = 0, size = 0;
   for (size_t k = 0; k < island.bodies.size(); ++k) {
     const Eigen::Index at = static_cast<Eigen::Index>(6 * k);
@@ -434,18 +440,23 @@ bool balanced(const Island& island, const std::vector<BodyResponse>& bodies,
     const Vec6 y = s.y.segment<6>(at);
     size += y.dot(problem.metric[k] * y);
   }
-  return std::sqrt(residual) <= tolerance * std::sqrt(made) + kRoundOff * std::sqrt(size);
+  return {std::sqrt(residual), tolerance * std::sqrt(made) + kRoundOff * std::sqrt(size)};
 }
 
 // Newton's iterations on one island until l's gradient balances (the stopping rule) or the
-// island has taken `budget` iterations in all (false).
+// island has taken `budget` iterations in all (false). With `contracting`, also false as soon as
+// an iteration fails to halve the gradient: the polish, started next to its answer, converges
+// at Newton's local rate or not at all.
 bool newton_iterations(Island& island, const std::vector<BodyResponse>& bodies,
                        const IslandProblem& problem, NewtonState& s, Real band, Real tolerance,
-                       int budget) {
+                       int budget, bool contracting = false) {
+  Real last = std::numeric_limits<Real>::infinity();
   while (true) {
     evaluate(island, problem, s, island.iterations == 0 ? band : -1, true);
-    if (balanced(island, bodies, problem, s, tolerance)) return true;
-    if (island.iterations >= budget) return false;
+    const Balance b = balance(island, bodies, problem, s, tolerance);
+    if (b.met()) return true;
+    if (island.iterations >= budget || (contracting && !(b.residual <= 0.5 * last))) return false;
+    last = b.residual;
     assemble(island, problem, s);
     if (!island.factor.factorise(s.diagonal, s.off_diagonal)) return false;
     s.rhs = -s.gradient;
@@ -548,8 +559,8 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
   // The polish (as OSQP polishes its ADMM answer): each friction row is held in the state the
   // regularised answer found, stick or slip, with R a millionth of w and its centre at that
   // answer, and Newton solves again; a held row that then needs more than its limit is let go
-  // and slips. If this does not converge within kMaxPolishIterations, the regularised answer
-  // stands.
+  // and slips. If an iteration fails to halve the gradient, or the polish takes more than
+  // kMaxPolishIterations, the regularised answer stands.
   if (solved) {
     const Vector soft_y = s.y;
     const std::vector<Row> soft_rows = rows;
@@ -561,16 +572,19 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
       row.regularisation = newton::kExactRegularisation * row.delassus;
     }
     const int budget = island.iterations + kMaxPolishIterations;
-    bool polished = newton_iterations(island, bodies, problem, s, band, tolerance, budget);
+    bool polished =
+        newton_iterations(island, bodies, problem, s, band, tolerance, budget, true);
     while (polished) {
       bool let_go = false;
       for (size_t r = 0; r < rows.size(); ++r)
-        if (rows[r].held && size_of(rows[r], s.response[r].impulse) > rows[r].radius * (1 + tolerance)) {
+        if (rows[r].held &&
+            size_of(rows[r], s.response[r].impulse) > rows[r].radius * (1 + tolerance)) {
           rows[r].held = false;
           let_go = true;
         }
       if (!mirror_rows(rows, s) && !let_go) break;
-      polished = newton_iterations(island, bodies, problem, s, band, tolerance, budget);
+      polished =
+          newton_iterations(island, bodies, problem, s, band, tolerance, budget, true);
     }
     island.polished = polished;
     if (!polished) {

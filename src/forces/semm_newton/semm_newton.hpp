@@ -21,8 +21,9 @@
 //   in a few iterations where stiff rows stalled (docs/benchmarks.md);
 // - the polish: each friction row held in the stick or slip the regularised answer found, R
 //   1e-6 w, solved again; rows held in stick beyond their limit are let go. Converged, friction
-//   is exact Coulomb (no lift of a sliding body, no creep at the friction angle); not converged
-//   within kMaxPolishIterations, the regularised answer stands.
+//   is exact Coulomb (no lift of a sliding body, no creep at the friction angle); should an
+//   iteration fail to halve the gradient (Newton's local rate: the polish starts next to its
+//   answer or nowhere near it), or kMaxPolishIterations pass, the regularised answer stands.
 //
 // Stopping rule: Newton stops when the momentum the impulses fail to give the bodies,
 // |grad l| in the norm of M^-1, is at most `tolerance` times the impulses' own size
@@ -67,7 +68,8 @@ struct NewtonSolverMemory {
 
 // The largest number of Newton iterations one island's regularised answer may take (all its
 // passes together; reached, the island is left to the row solver), and how many more its
-// polish may take (reached, the regularised answer stands).
+// polish may take (reached, or an iteration that fails to halve the gradient, and the
+// regularised answer stands).
 inline constexpr int kMaxNewtonIterations = 30;
 inline constexpr int kMaxPolishIterations = 10;
 
