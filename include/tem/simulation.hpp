@@ -83,11 +83,9 @@ struct RunStatistics {
   // solved by the row solver instead.
   long long fallback_islands = 0;
   int newton_iteration_limit = 0;
-  // contact.solver "newton": islands whose polish (exact friction) did not converge, within
-  // newton_polish_limit more iterations each halving the gradient, which kept the regularised
-  // answer (docs/method.md, "SEMM by Newton").
+  // contact.solver "newton": islands whose polish to exact friction did not converge, which
+  // kept the regularised answer (docs/method.md, "SEMM by Newton").
   long long regularised_islands = 0;
-  int newton_polish_limit = 0;
   long long outran_margin = 0;  // bodies that moved farther in a step than their contact margin
   long long substeps = 0;       // summed over the steps, and the most one step took
   int max_substeps = 0;

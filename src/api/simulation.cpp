@@ -395,7 +395,6 @@ RunStatistics Simulation::run_statistics() const {
   r.corrected_steps = t.corrected_steps;
   r.fallback_islands = t.fallback_islands;
   r.regularised_islands = t.regularised_islands;
-  r.newton_polish_limit = kMaxPolishIterations;
   r.newton_iteration_limit = kMaxNewtonIterations;
   r.outran_margin = t.outran_margin;
   r.substeps = t.substeps;

@@ -14,7 +14,7 @@ RowResponse disc(const Row& row, const Vec2& u) {
   if (!(r > 0)) return out;  // no normal load: no friction
   Vec2 v = row.centre - u / reg;
   if (row.dim == 1) v.y() = 0;
-  const Real size = row.dim == 2 ? v.norm() : std::abs(v.x());
+  const Real size = size_of(row, v);
   if (size <= r || row.held) {  // stick
     out.impulse = v;
     out.curvature.topLeftCorner(row.dim, row.dim).diagonal().setConstant(1 / reg);

@@ -27,6 +27,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <cmath>
 #include <cstdint>
 
 #include "world/model.hpp"
@@ -65,6 +66,11 @@ struct Row {
   bool mirrored = false;
   bool held = false;  // disc rows: held in stick (the polish)
 };
+
+// The size of a row's impulse (or velocity): its length, or the absolute value of a 1-D row's.
+inline Real size_of(const Row& row, const Vec2& v) {
+  return row.dim == 2 ? v.norm() : std::abs(v.x());
+}
 
 // The impulse gamma(u) of a row and its generalised Hessian G(u) (dim x dim, top left of a 2x2).
 // `at_kink_active`: a normal row exactly at (or within `band` of) its target counts as pushing

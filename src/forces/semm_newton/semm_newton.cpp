@@ -14,6 +14,7 @@ using newton::Jacobian;
 using newton::Mat2;
 using newton::Mat6;
 using newton::Row;
+using newton::size_of;
 using newton::RowResponse;
 using newton::Vec2;
 using newton::Vec6;
@@ -484,10 +485,6 @@ bool mirror_rows(std::vector<Row>& rows, const NewtonState& s) {
     mirrored = true;
   }
   return mirrored;
-}
-
-Real size_of(const Row& row, const Vec2& impulse) {
-  return row.dim == 2 ? impulse.norm() : std::abs(impulse.x());
 }
 
 // One island: the warm start, the regularised answer, its polish, the energy check.
