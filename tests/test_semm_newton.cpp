@@ -1,7 +1,8 @@
 // SEMM by Newton (contact.solver "newton", src/forces/semm_newton/): the weight of a whole column
 // reaches the floor within one solve, in as many Newton iterations at forty coins as at ten;
-// the same bits at any thread count; the scene key read and written. The closed forms of the
-// box on the floor and on the incline are in test_physics.cpp, run with both solvers.
+// the same bits at any thread count; a stopped box at rest in every step; the scene key read and
+// written. The closed forms of the box on the floor and on the incline are in test_physics.cpp,
+// run with both solvers.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -88,6 +89,30 @@ TEST(SemmNewton, ColumnStandsInIterationsThatDoNotGrowWithItsHeight) {
   EXPECT_LT(ten.most_iterations, kMaxNewtonIterations);
   EXPECT_LT(forty.fallbacks, 4);  // 1 % of 400 steps
   EXPECT_LE(forty.median_iterations, ten.median_iterations + 2);
+}
+
+// A box sliding at 10 cm/s on the floor (mu 0.5) stops after v / (mu g) = 0.020 s; from 0.03 s
+// on it is at rest to round-off in every step, not only at the end: the polish takes one Newton
+// step at least, so the impulses are not those of a start within the tolerance (which left the
+// box moving at up to 2e-10 cm/s in one step of seven).
+TEST(SemmNewton, StoppedBoxIsAtRestInEveryStep) {
+  SceneDef scene = testing_support::box_on_floor();
+  scene.contact.solver = ContactSolver::newton;
+  scene.contact.friction = 0.5;
+  scene.time_step = 5e-4;
+  scene.bodies[0].velocity = Vec3(10, 0, 0);
+  const Model model = build_model(scene);
+  State state = initial_state(model);
+  Real fastest = 0;
+  int steps = 0;
+  simulate(model, state, 0.1, [&](const State& s, const Workspace&) {
+    if (s.time < 0.03) return;
+    fastest = std::max(fastest, s.bodies[0].v.norm());
+    ++steps;
+  });
+  report("stopped box: fastest after 0.03 s (cm/s)", fastest);
+  EXPECT_GE(steps, 100);
+  EXPECT_LE(fastest, 1e-12);
 }
 
 // Islands are solved on their own, each on one thread: a lattice of 12 x 12 columns of three

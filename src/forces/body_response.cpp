@@ -43,6 +43,7 @@ void body_responses(const Model& model, const State& state, Real dt,
     const Vec3 force = loaded ? loads->force[i] : Vec3::Zero();
     const Vec3 torque = loaded ? loads->torque[i] : Vec3::Zero();
     r.velocity = s.v + (gravity + force / inertia.mass) * dt;
+    r.start_velocity = s.v;
     if (model.scene.integrator == IntegratorKind::paper) {
       // Omega' with no contact torque (the previous torque still enters through dN), and
       // W = (d Omega' / d N) / dt for an angular impulse h = N dt.

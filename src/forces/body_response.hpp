@@ -26,6 +26,9 @@ struct BodyResponse {
   Mat3 angular = Mat3::Zero();         // Q: angular impulse (world) -> pseudo angular velocity
   Vec3 velocity = Vec3::Zero();        // y, linear part, with no contact impulse: v + G dt
   Vec3 angular_velocity = Vec3::Zero();  // y, angular part, with no contact impulse
+  // The linear velocity at the start of the step: what y's linear part is for a body the
+  // contacts hold as it was (SEMM by Newton's warm start of a resting pile).
+  Vec3 start_velocity = Vec3::Zero();
 };
 
 // A body's pseudo velocity (y) in the row solver while it sweeps, linear and angular together

@@ -445,17 +445,22 @@ Balance balance(const Island& island, const std::vector<BodyResponse>& bodies,
 }
 
 // Newton's iterations on one island until l's gradient balances (the stopping rule) or the
-// island has taken `budget` iterations in all (false). With `contracting`, also false as soon as
-// an iteration fails to halve the gradient: the polish, started next to its answer, converges
-// at Newton's local rate or not at all.
+// island has taken `budget` iterations in all (false). With `contracting` (the polish), also
+// false as soon as an iteration fails to halve the gradient: started next to its answer, the
+// polish converges at Newton's local rate or not at all; and at least one iteration is taken.
+// Why the one: the polish's start (the regularised answer) often meets the tolerance already,
+// and the impulses read off the rows there are off by the gradient, up to the tolerance: a box
+// at rest then moved at 1e-10 cm/s in one step of seven. One Newton step from there lands on
+// the exact answer of its stick and slip to round-off (l is quadratic on that piece).
 bool newton_iterations(Island& island, const std::vector<BodyResponse>& bodies,
                        const IslandProblem& problem, NewtonState& s, Real band, Real tolerance,
                        int budget, bool contracting = false) {
   Real last = std::numeric_limits<Real>::infinity();
+  const int first = island.iterations;
   while (true) {
     evaluate(island, problem, s, island.iterations == 0 ? band : -1, true);
     const Balance b = balance(island, bodies, problem, s, tolerance);
-    if (b.met()) return true;
+    if (b.met() && !(contracting && island.iterations == first)) return true;
     if (island.iterations >= budget || (contracting && !(b.residual <= 0.5 * last))) return false;
     last = b.residual;
     assemble(island, problem, s);
@@ -498,8 +503,12 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
   std::vector<Row>& rows = island.rows;
   NewtonState s;
 
-  // The warm start: the last step's impulses, each row's proximal centre, applied to y_free
-  // and kept if l is lower there.
+  // The warm start, whichever of three places has the lowest l: y_free; y_free moved by the
+  // last step's impulses (each row's proximal centre); and the bodies' velocities at the start
+  // of the step, the contacts holding every body as it was. On a resting pile the last is
+  // nearly the answer while the impulses are not: a point that moved or appeared since the
+  // last step takes no impulse (warm_start.hpp), and a coin whose other points keep theirs is
+  // pushed into its neighbour at 10 cm/s (docs/benchmarks.md, "SEMM by Newton").
   std::vector<Real>& normal = s.normal_impulse;
   normal.assign(rows.size(), 0);
   for (size_t r = 0; r < rows.size(); ++r)
@@ -518,10 +527,19 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
   }
   for (size_t r = 0; r < rows.size(); ++r) rows[r].centre = warm.response[r].impulse;
   warm.y = problem.free + mobility_times(island, bodies, problem, warm);
+  NewtonState held;
+  held.y = problem.free;
+  for (size_t k = 0; k < island.bodies.size(); ++k)
+    held.y.segment<3>(static_cast<Eigen::Index>(6 * k)) = bodies[island.bodies[k]].start_velocity;
   s.y = problem.free;
-  const Real at_free = evaluate(island, problem, s, -1, false);
-  s.y = warm.y;
-  if (evaluate(island, problem, s, -1, false) > at_free) s.y = problem.free;
+  Real lowest = evaluate(island, problem, s, -1, false);
+  for (NewtonState* candidate : {&warm, &held}) {
+    const Real at = evaluate(island, problem, *candidate, -1, false);
+    if (at < lowest) {
+      lowest = at;
+      s.y = candidate->y;
+    }
+  }
 
   // How near its target a normal row counts as pushing in the first Hessian (newton_rows.hpp):
   // a millionth of the largest velocity change a row asks of the free motion.
@@ -596,8 +614,11 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
   evaluate(island, problem, given, -1, false);
 
   // Energy over the step (semm_rows.cpp, energy_scale): each row's impulse does the work
-  // gamma . (u_start + u_after) / 2; should the sum be positive, scale every impulse of the
-  // island by the largest s with s B + s^2 A <= 0.
+  // gamma . (u_start + u_after) / 2; should the sum be positive beyond round-off, scale every
+  // impulse of the island by the largest s with s B + s^2 A <= 0. Round-off: the velocities
+  // after the step carry that of their change, so the sum carries some epsilon of A; a body
+  // held exactly at rest (the polish lands there) otherwise had its impulses scaled by
+  // 1 - 2e-16 in most steps, and the count of scaled steps meant nothing.
   Real added = 0, curvature = 0;
   NewtonState free_state;
   free_state.y = problem.free;
@@ -611,7 +632,7 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
     curvature += gamma.dot(given.u[r] - free_state.u[r]) / 2;
   }
   island.scale = 1;
-  if (added > 0) {
+  if (added > 64 * std::numeric_limits<Real>::epsilon() * std::abs(curvature)) {
     const Real linear = added - curvature;
     island.scale = linear < 0 && curvature > 0 ? std::clamp<Real>(-linear / curvature, 0, 1) : 0;
   }

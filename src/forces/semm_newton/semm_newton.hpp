@@ -24,6 +24,9 @@
 //   is exact Coulomb (no lift of a sliding body, no creep at the friction angle); should an
 //   iteration fail to halve the gradient (Newton's local rate: the polish starts next to its
 //   answer or nowhere near it), or kMaxPolishIterations pass, the regularised answer stands.
+//   It takes one iteration at least, which lands a body at rest on round-off.
+// The warm start is the lowest of y_free, the last step's impulses and the bodies' start
+// velocities (solve_island).
 //
 // Stopping rule: Newton stops when the momentum the impulses fail to give the bodies,
 // |grad l| in the norm of M^-1, is at most `tolerance` times the impulses' own size
