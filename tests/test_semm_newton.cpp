@@ -93,8 +93,8 @@ TEST(SemmNewton, ColumnStandsInIterationsThatDoNotGrowWithItsHeight) {
 
 // A box sliding at 10 cm/s on the floor (mu 0.5) stops after v / (mu g) = 0.020 s; from 0.03 s
 // on it is at rest to round-off in every step, not only at the end: the polish takes one Newton
-// step at least, so the impulses are not those of a start within the tolerance (which left the
-// box moving at up to 2e-10 cm/s in one step of seven).
+// step at least, so the impulses are not those of a start within the tolerance (which can leave
+// the box moving at up to 3e-10 cm/s in some steps).
 TEST(SemmNewton, StoppedBoxIsAtRestInEveryStep) {
   SceneDef scene = testing_support::box_on_floor();
   scene.contact.solver = ContactSolver::newton;

@@ -450,7 +450,7 @@ Balance balance(const Island& island, const std::vector<BodyResponse>& bodies,
 // polish converges at Newton's local rate or not at all; and at least one iteration is taken.
 // Why the one: the polish's start (the regularised answer) often meets the tolerance already,
 // and the impulses read off the rows there are off by the gradient, up to the tolerance: a box
-// at rest then moved at 1e-10 cm/s in one step of seven. One Newton step from there lands on
+// at rest would move at up to 3e-10 cm/s in some steps. One Newton step from there lands on
 // the exact answer of its stick and slip to round-off (l is quadratic on that piece).
 bool newton_iterations(Island& island, const std::vector<BodyResponse>& bodies,
                        const IslandProblem& problem, NewtonState& s, Real band, Real tolerance,
@@ -617,8 +617,8 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
   // gamma . (u_start + u_after) / 2; should the sum be positive beyond round-off, scale every
   // impulse of the island by the largest s with s B + s^2 A <= 0. Round-off: the velocities
   // after the step carry that of their change, so the sum carries some epsilon of A; a body
-  // held exactly at rest (the polish lands there) otherwise had its impulses scaled by
-  // 1 - 2e-16 in most steps, and the count of scaled steps meant nothing.
+  // held exactly at rest (the polish lands there) would otherwise have its impulses scaled by
+  // 1 - 2e-16 in most steps, which changes nothing but the count of scaled steps.
   Real added = 0, curvature = 0;
   NewtonState free_state;
   free_state.y = problem.free;
