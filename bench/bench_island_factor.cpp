@@ -4,8 +4,8 @@
 // row's Delassus diagonal (newton_rows.hpp), the matrix every Newton iteration of a settled pile
 // factorises. Which linear solver pays at which size:
 //   - Eigen's SimplicialLDLT (what island_factor.cpp uses) and SimplicialLLT, AMD ordering;
-//   - CHOLMOD's supernodal Cholesky (SuiteSparse, through Eigen's CholmodSupport), where built
-//     with it (libsuitesparse-dev);
+//   - CHOLMOD's supernodal Cholesky (SuiteSparse, through Eigen's CholmodSupport), what
+//     island_factor.cpp uses above kSupernodalBodies;
 //   - conjugate gradients preconditioned by the bodies' 6 x 6 blocks (block_jacobi.hpp), or by
 //     an incomplete Cholesky factor, to a relative residual of 1e-8.
 // Counters: analyse_ms (the symbolic analysis, once per step while the contact graph holds),
@@ -21,9 +21,8 @@
 #include "bench_scenes.hpp"
 #include "contact/detect_contacts.hpp"
 #include "block_jacobi.hpp"
-#ifdef TEM_HAVE_CHOLMOD
+#include "support/parallel.hpp"
 #include <Eigen/CholmodSupport>
-#endif
 
 namespace tem::bench {
 namespace {
@@ -124,7 +123,7 @@ void direct(benchmark::State& st, const PileHessian& h, Factor& factor) {
   Eigen::VectorXd x;
   for (auto _ : st) {
     clock = std::chrono::steady_clock::now();
-    factor.factorize(h.matrix);
+    serially([&] { factor.factorize(h.matrix); });  // as island_factor.cpp
     factor_ms += ms_since(clock);
     clock = std::chrono::steady_clock::now();
     x = factor.solve(h.rhs);
@@ -155,14 +154,12 @@ void BM_IslandFactorEigenLLT(benchmark::State& st) {
   st.counters["factor_nnz"] = static_cast<double>(factor.matrixL().nestedExpression().nonZeros());
 }
 
-#ifdef TEM_HAVE_CHOLMOD
 void BM_IslandFactorCholmod(benchmark::State& st) {
   const PileHessian h = pile_hessian(static_cast<int>(st.range(0)));
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> factor;
   direct(st, h, factor);
   st.counters["factor_nnz"] = static_cast<double>(factor.cholmod().lnz);
 }
-#endif
 
 template <class Preconditioner>
 void conjugate_gradients(benchmark::State& st) {
@@ -196,12 +193,10 @@ void BM_IslandSolveCGIncompleteCholesky(benchmark::State& st) {
   conjugate_gradients<Eigen::IncompleteCholesky<Real>>(st);
 }
 
-#define TEM_ISLAND_SIZES ->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Arg(4000)->Arg(10000)->Unit(benchmark::kMillisecond)
+#define TEM_ISLAND_SIZES ->Arg(30)->Arg(60)->Arg(100)->Arg(300)->Arg(1000)->Arg(4000)->Arg(10000)->Unit(benchmark::kMillisecond)
 BENCHMARK(BM_IslandFactorEigenLDLT) TEM_ISLAND_SIZES;
 BENCHMARK(BM_IslandFactorEigenLLT) TEM_ISLAND_SIZES;
-#ifdef TEM_HAVE_CHOLMOD
 BENCHMARK(BM_IslandFactorCholmod) TEM_ISLAND_SIZES;
-#endif
 BENCHMARK(BM_IslandSolveCGBlockJacobi) TEM_ISLAND_SIZES;
 BENCHMARK(BM_IslandSolveCGIncompleteCholesky) TEM_ISLAND_SIZES;
 

@@ -17,6 +17,7 @@ packages=(
   python3-numpy python3-matplotlib   # tools/figures.py
   pybind11-dev python3-pytest python3-dev   # the Python module (python/) and its tests
   libcgal-dev            # checks meshes and cuts them exactly into convex blocks
+  libsuitesparse-dev     # CHOLMOD: SEMM by Newton's factorisation of large islands
   libopenmpi-dev openmpi-bin   # mpirun -np N tem run (TEM_MPI)
   libtrilinos-zoltan-dev       # recursive coordinate bisection of the bodies among the ranks
 )

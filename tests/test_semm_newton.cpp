@@ -1,7 +1,7 @@
 // SEMM by Newton (contact.solver "newton", src/forces/semm_newton/): the weight of a whole column
 // reaches the floor within one solve, in as many Newton iterations at forty coins as at ten;
-// the same bits at any thread count; a stopped box at rest in every step; the scene key read and
-// written. The closed forms of the box on the floor and on the incline are in test_physics.cpp,
+// the same bits at any thread count; a stopped box at rest in every step; a pyramid of cubes,
+// a pile's island, on CHOLMOD's supernodal factorisation; the scene key read and written. The closed forms of the box on the floor and on the incline are in test_physics.cpp,
 // run with both solvers.
 #include <gtest/gtest.h>
 
@@ -132,6 +132,72 @@ TEST(SemmNewton, SameBitsAtAnyThreadCount) {
   for (size_t i = 0; i < one.bodies.size(); ++i) {
     EXPECT_EQ(one.bodies[i].x, two.bodies[i].x) << i;
     EXPECT_EQ(one.bodies[i].v, two.bodies[i].v) << i;
+  }
+}
+
+// A pyramid of 0.2 cm cubes, 6 x 6 at the base, each layer shifted half a cube so that every
+// cube above the floor stands on four: one island of 91 bodies whose factor fills in as a
+// pile's, and so takes CHOLMOD's supernodal factorisation (island_factor.hpp). It stands, the
+// floor carries its whole weight in every step once it has landed, and it steps to the same
+// bits on one thread and on two (the BLAS held to one thread).
+TEST(SemmNewton, PyramidOfCubesStandsOnASupernodalFactorisation) {
+  constexpr Real kSide = 0.2;
+  SceneDef scene;
+  scene.gravity = Vec3(0, 0, -981);
+  scene.time_step = 5e-4;
+  scene.contact.friction = 0.3;
+  scene.contact.solver = ContactSolver::newton;
+  scene.contact.tolerance = 1e-9;
+  scene.walls.push_back({Vec3::Zero(), Vec3::UnitZ()});
+  for (int layer = 0; layer < 6; ++layer)
+    for (int i = 0; i < 6 - layer; ++i)
+      for (int j = 0; j < 6 - layer; ++j) {
+        BodyDef cube;
+        cube.name = "c" + std::to_string(scene.bodies.size());
+        cube.shape.type = ShapeType::box;
+        cube.shape.size = Vec3::Constant(kSide);
+        cube.density = 1;
+        cube.position = Vec3((i + 0.5 * layer) * kSide, (j + 0.5 * layer) * kSide,
+                             (layer + 0.5) * kSide + 1e-4 * (layer + 1));  // 1 um gaps
+        scene.bodies.push_back(cube);
+      }
+  const Model model = build_model(scene);
+  Real weight = 0;
+  for (const Body& b : model.bodies) weight += b.inertia.mass * -scene.gravity.z();
+  const int threads = max_threads();
+  std::vector<State> ends;
+  for (int count : {1, 2}) {
+    set_threads(count);
+    State state = initial_state(model);
+    int supernodal_steps = 0, loaded_steps = 0;
+    Real worst_load = 0;
+    const auto watch = simulate(model, state, 0.03, [&](const State& s, const Workspace& w) {
+      supernodal_steps += w.forces.solver.supernodal_islands;
+      if (s.time < 0.01) return;  // landing: the top cube's 6 um fall takes 1.1 ms
+      Real floor = 0;
+      for (size_t i = 0; i < w.forces.points.size(); ++i)
+        if (w.forces.points[i].wall == 0) floor += w.forces.impulses[i].normal;
+      worst_load = std::max(worst_load, std::abs(floor / (weight * scene.time_step) - 1));
+      ++loaded_steps;
+    });
+    Real fastest = 0;
+    for (const BodyState& b : state.bodies) fastest = std::max(fastest, b.v.norm());
+    if (count == 1) {
+      report("cube pyramid: steps factorised supernodally", supernodal_steps);
+      report("cube pyramid: worst floor load / weight - 1", worst_load);
+      report("cube pyramid: fastest cube at the end (cm/s)", fastest);
+      report("cube pyramid: deepest overlap / side", watch.deepest / kSide);
+    }
+    EXPECT_GE(supernodal_steps, loaded_steps);
+    EXPECT_LT(worst_load, 1e-6);
+    EXPECT_LT(fastest, 1e-3);
+    EXPECT_LT(watch.deepest, 0.01 * kSide);
+    ends.push_back(state);
+  }
+  set_threads(threads);
+  for (size_t i = 0; i < ends[0].bodies.size(); ++i) {
+    EXPECT_EQ(ends[0].bodies[i].x, ends[1].bodies[i].x) << i;
+    EXPECT_EQ(ends[0].bodies[i].v, ends[1].bodies[i].v) << i;
   }
 }
 

@@ -58,4 +58,32 @@ void parallel_for(long long n, long long serial_below, F&& f, bool dynamic = fal
   for (long long i = 0; i < n; ++i) f(i);
 }
 
+// Calls f() on the calling thread alone, with every OpenMP region inside it run by that thread:
+// for libraries that share their work among OpenMP threads in ways TEM cannot allow.
+//   - CHOLMOD opens regions of four threads per supernode to copy and clear columns: waking
+//     them costs more than the work they share.
+//   - An OpenMP build of OpenBLAS shares a BLAS call among omp_get_max_threads() threads, in
+//     blocks that depend on their number, so that its sums round differently at different
+//     thread counts: TEM promises the same bits at any thread count.
+// Inside one of TEM's regions, nested regions already run alone and OpenBLAS runs on one thread.
+// Outside, the calling thread's thread count is set to one, and the process-wide limit on active
+// levels to none (so a region with a thread count of its own runs alone too): no other TEM
+// thread runs then. Both are put back after.
+template <class F>
+void serially(F&& f) {
+#ifdef _OPENMP
+  if (!omp_in_parallel()) {
+    const int threads = omp_get_max_threads();
+    const int levels = omp_get_max_active_levels();
+    omp_set_num_threads(1);
+    omp_set_max_active_levels(0);
+    f();
+    omp_set_max_active_levels(levels);
+    omp_set_num_threads(threads);
+    return;
+  }
+#endif
+  f();
+}
+
 }  // namespace tem

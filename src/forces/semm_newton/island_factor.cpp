@@ -1,18 +1,74 @@
 #include "forces/semm_newton/island_factor.hpp"
 
+#include <dlfcn.h>
+
+#include <Eigen/CholmodSupport>
+#include <mutex>
+
+#include "support/parallel.hpp"
+
 namespace tem::newton {
+namespace {
+
+// CHOLMOD's supernodal factorisation calls BLAS (dpotrf, dsyrk, dgemm, dtrsm) on its dense
+// blocks. A threaded BLAS splits those among threads in blocks that depend on how many it has,
+// and so rounds differently at different thread counts; TEM promises the same bits at any
+// thread count, so the BLAS is held to one thread. Of the BLAS Debian offers, OpenBLAS is
+// threaded: its OpenMP build follows the caller's OpenMP thread count, which serially()
+// (support/parallel.hpp) sets to one around each factorisation; its pthreads build has its own
+// count, set here to one. Its setter is looked up where it is loaded: in the program's global
+// scope, or in the library loaded beside this one (a Python extension's libraries are loaded
+// locally, out of the global scope). The OpenMP build's setter also sets the calling thread's
+// OpenMP thread count, which TEM's own regions use, so that count is put back.
+void hold_blas_to_one_thread() {
+  using Setter = void (*)(int);
+  auto* setter = reinterpret_cast<Setter>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  for (const char* library : {"libopenblas.so.0", "libblas.so.3"}) {
+    if (setter) break;
+    if (void* handle = dlopen(library, RTLD_NOW | RTLD_NOLOAD)) {
+      setter = reinterpret_cast<Setter>(dlsym(handle, "openblas_set_num_threads"));
+      dlclose(handle);
+    }
+  }
+  if (!setter) return;
+  const int threads = max_threads();
+  setter(1);
+  set_threads(threads);
+}
+
+}  // namespace
+
+struct IslandFactor::SimplicialFactor
+    : Eigen::SimplicialLDLT<Eigen::SparseMatrix<Real>, Eigen::Lower> {
+  // Entries of L below the diagonal, known from the symbolic analysis: Eigen sizes L's storage
+  // there (SimplicialCholeskyBase::analyzePattern_preordered) but says so only after factorize.
+  Eigen::Index factor_entries() const { return m_matrix.nonZeros(); }
+};
+
+struct IslandFactor::SupernodalFactor
+    : Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<Real>, Eigen::Lower> {};
+
+IslandFactor::IslandFactor() = default;
+IslandFactor::IslandFactor(const IslandFactor& other) { *this = other; }
+IslandFactor& IslandFactor::operator=(const IslandFactor& other) {
+  if (this != &other) set_pattern(other.bodies_, other.pairs_);
+  return *this;
+}
+IslandFactor::IslandFactor(IslandFactor&&) noexcept = default;
+IslandFactor& IslandFactor::operator=(IslandFactor&&) noexcept = default;
+IslandFactor::~IslandFactor() = default;
 
 void IslandFactor::set_pattern(int bodies, const std::vector<std::pair<int, int>>& pairs) {
   bodies_ = bodies;
   pairs_ = pairs;
-  dense_ = bodies <= kDenseBodies;
+  kind_ = bodies <= kDenseBodies ? Kind::dense : Kind::simplicial;
   analysed_ = false;
 }
 
 bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
                              const std::vector<Mat6>& off_diagonal) {
   const int n = 6 * bodies_;
-  if (dense_) {
+  if (kind_ == Kind::dense) {
     dense_matrix_.setZero(n, n);
     for (int b = 0; b < bodies_; ++b) dense_matrix_.block<6, 6>(6 * b, 6 * b) = diagonal[b];
     for (size_t k = 0; k < pairs_.size(); ++k) {
@@ -39,16 +95,33 @@ bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
   sparse_matrix_.resize(n, n);
   sparse_matrix_.setFromTriplets(triplets_.begin(), triplets_.end());
   if (!analysed_) {
-    if (!sparse_factor_) sparse_factor_ = std::make_unique<SparseFactor>();
-    sparse_factor_->analyzePattern(sparse_matrix_);
     analysed_ = true;
+    if (!simplicial_factor_) simplicial_factor_ = std::make_unique<SimplicialFactor>();
+    simplicial_factor_->analyzePattern(sparse_matrix_);
+    if (simplicial_factor_->factor_entries() >=
+        static_cast<Eigen::Index>(kSupernodalColumnEntries) * n) {
+      kind_ = Kind::supernodal;
+      simplicial_factor_.reset();  // its storage for L: 16 MB on a 1,000-coin pile
+      static std::once_flag blas_held;
+      std::call_once(blas_held, hold_blas_to_one_thread);
+      if (!supernodal_factor_) supernodal_factor_ = std::make_unique<SupernodalFactor>();
+      serially([&] { supernodal_factor_->analyzePattern(sparse_matrix_); });
+    }
   }
-  sparse_factor_->factorize(sparse_matrix_);
-  return sparse_factor_->info() == Eigen::Success;
+  if (kind_ == Kind::simplicial) {
+    simplicial_factor_->factorize(sparse_matrix_);
+    return simplicial_factor_->info() == Eigen::Success;
+  }
+  serially([&] { supernodal_factor_->factorize(sparse_matrix_); });
+  return supernodal_factor_->info() == Eigen::Success;
 }
 
 void IslandFactor::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
-  x = dense_ ? Eigen::VectorXd(dense_factor_.solve(b)) : Eigen::VectorXd(sparse_factor_->solve(b));
+  switch (kind_) {
+    case Kind::dense: x = dense_factor_.solve(b); break;
+    case Kind::simplicial: x = simplicial_factor_->solve(b); break;
+    case Kind::supernodal: serially([&] { x = supernodal_factor_->solve(b); }); break;
+  }
 }
 
 }  // namespace tem::newton

@@ -4,13 +4,25 @@
 //
 // Why a direct factorisation: it is what makes the weight of the top grain reach the floor in
 // one iteration, whatever the height of the pile (a Gauss-Seidel sweep carries it one layer).
-// Small islands (at most kDenseBodies bodies: a grain on the floor, a few touching) take a dense
-// Cholesky factorisation; larger ones Eigen's sparse Cholesky (SimplicialLDLT with an approximate
-// minimum degree ordering), whose symbolic analysis is made once per step and reused by every
-// iteration of the step (the pattern holds every row, pushing or not). Measured beside it
-// (docs/benchmarks.md, "The island solve"): CHOLMOD's supernodal factorisation is faster from
-// 1,000 bodies on, and conjugate gradients preconditioned by the bodies' blocks faster still on
-// a resting pile, but slower than this factorisation in a pour's crash.
+// Three factorisations, by the island's size and shape:
+//   - at most kDenseBodies bodies (a grain on the floor, a few touching): a dense Cholesky;
+//   - larger: Eigen's sparse Cholesky (SimplicialLDLT, approximate minimum degree ordering),
+//     column by column, where the factor is sparse: chains and the loose clusters of a pour;
+//   - CHOLMOD's supernodal Cholesky (SuiteSparse) where the factor's columns hold on average at
+//     least kSupernodalColumnEntries entries below the diagonal: a pile, whose separators are
+//     dense blocks of hundreds of unknowns. It gathers columns of one pattern into dense blocks
+//     and factorises them with BLAS. Measured on the same matrices (docs/benchmarks.md, "The
+//     island solve"): 0.4-0.7 times as fast as Eigen's below 30 entries a column (a pour's
+//     islands), as fast at 30-40, 1.5 times at 44 and 3.9 times at 95 (the settled 1,000-coin
+//     pile). CHOLMOD switches between its own simplicial and supernodal factorisations by a
+//     rule of the same kind (flops per entry of L, 40).
+// Eigen's symbolic analysis, which counts the factor's entries, is made once per step and
+// decides; the analysis of the chosen factorisation is reused by every iteration of the step
+// (the pattern holds every row, pushing or not). The choice depends only on the pattern, so it is
+// the same at any thread count and across a resume; so that the BLAS gives the same bits too, it
+// is held to one thread (island_factor.cpp). Measured beside these: conjugate gradients
+// preconditioned by the bodies' blocks are faster on a resting pile but slower in a pour's crash,
+// and preconditioned by the step's earlier factor slower everywhere (docs/benchmarks.md).
 #pragma once
 
 #include <Eigen/Sparse>
@@ -24,19 +36,18 @@
 namespace tem::newton {
 
 inline constexpr int kDenseBodies = 8;
+inline constexpr int kSupernodalColumnEntries = 40;
 
 class IslandFactor {
  public:
-  IslandFactor() = default;
-  // A copy (of a workspace) keeps the pattern and factorises afresh: Eigen's factors are not
-  // copied.
-  IslandFactor(const IslandFactor& other) { *this = other; }
-  IslandFactor& operator=(const IslandFactor& other) {
-    if (this != &other) set_pattern(other.bodies_, other.pairs_);
-    return *this;
-  }
-  IslandFactor(IslandFactor&&) = default;
-  IslandFactor& operator=(IslandFactor&&) = default;
+  // Defined beside SupernodalFactor (island_factor.cpp), which is complete only there.
+  IslandFactor();
+  // A copy (of a workspace) keeps the pattern and factorises afresh: the factors are not copied.
+  IslandFactor(const IslandFactor& other);
+  IslandFactor& operator=(const IslandFactor& other);
+  IslandFactor(IslandFactor&&) noexcept;
+  IslandFactor& operator=(IslandFactor&&) noexcept;
+  ~IslandFactor();
 
   // The island's pattern: `bodies` block rows, and the pairs (i > j) of bodies that share a row.
   void set_pattern(int bodies, const std::vector<std::pair<int, int>>& pairs);
@@ -45,18 +56,23 @@ class IslandFactor {
   bool factorise(const std::vector<Mat6>& diagonal, const std::vector<Mat6>& off_diagonal);
   // x = H^-1 b.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
+  // Whether this step's factorisation is CHOLMOD's supernodal one (known once factorised).
+  bool supernodal() const { return kind_ == Kind::supernodal; }
 
  private:
   int bodies_ = 0;
   std::vector<std::pair<int, int>> pairs_;
-  bool dense_ = true;
+  enum class Kind { dense, simplicial, supernodal };
+  Kind kind_ = Kind::dense;
   bool analysed_ = false;
   Eigen::MatrixXd dense_matrix_;
   Eigen::LLT<Eigen::MatrixXd> dense_factor_;
   std::vector<Eigen::Triplet<Real>> triplets_;
   Eigen::SparseMatrix<Real> sparse_matrix_;
-  using SparseFactor = Eigen::SimplicialLDLT<Eigen::SparseMatrix<Real>, Eigen::Lower>;
-  std::unique_ptr<SparseFactor> sparse_factor_;
+  struct SimplicialFactor;  // Eigen's, with the count of its factor's entries
+  struct SupernodalFactor;  // CHOLMOD's, defined where its header is included: the .cpp
+  std::unique_ptr<SimplicialFactor> simplicial_factor_;
+  std::unique_ptr<SupernodalFactor> supernodal_factor_;
 };
 
 }  // namespace tem::newton

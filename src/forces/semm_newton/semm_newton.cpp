@@ -727,6 +727,7 @@ SolverReport solve_semm_newton(const std::vector<ContactPoint>& points,
     if (island.converged) report.scale = std::min(report.scale, island.scale);
     else ++report.fallback_islands;
     if (island.converged && !island.polished) ++report.regularised_islands;
+    if (island.factor.supernodal()) ++report.supernodal_islands;
   }
   if (report.fallback_islands > 0) {
     const SolverReport rows =

@@ -1,0 +1,112 @@
+// The linear solve of SEMM by Newton (src/forces/semm_newton/island_factor.hpp) on Hessians of
+// the shape a pile and a chain give: H = M + sum over touching pairs of a coupling C (positive
+// semidefinite, -C between the two bodies), symmetric positive definite. A lattice of bodies
+// (a pile's pattern: its factor fills in) takes CHOLMOD's supernodal factorisation, a chain
+// (a column's: no fill) Eigen's; both solve H x = b to round-off, agree with a dense Cholesky,
+// and give the same bits at one and two OpenMP threads (the BLAS held to one).
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <random>
+#include <utility>
+#include <vector>
+
+#include "forces/semm_newton/island_factor.hpp"
+#include "support/parallel.hpp"
+
+namespace tem {
+namespace test_island_factor {
+
+using newton::IslandFactor;
+using newton::Mat6;
+
+struct Hessian {
+  int bodies = 0;
+  std::vector<std::pair<int, int>> pairs;  // (i > j), sorted
+  std::vector<Mat6> diagonal, off_diagonal;
+  Eigen::MatrixXd dense;  // the same matrix, whole
+};
+
+// Bodies at the points of an nx x ny x nz lattice, each coupled to its six neighbours.
+Hessian lattice(int nx, int ny, int nz, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<Real> uniform(-1, 1);
+  auto random_block = [&] {
+    Mat6 a;
+    for (int r = 0; r < 6; ++r)
+      for (int c = 0; c < 6; ++c) a(r, c) = uniform(random);
+    return a;
+  };
+  Hessian h;
+  h.bodies = nx * ny * nz;
+  auto index = [&](int i, int j, int k) { return (k * ny + j) * nx + i; };
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const int b = index(i, j, k);
+        if (i > 0) h.pairs.emplace_back(b, index(i - 1, j, k));
+        if (j > 0) h.pairs.emplace_back(b, index(i, j - 1, k));
+        if (k > 0) h.pairs.emplace_back(b, index(i, j, k - 1));
+      }
+  std::sort(h.pairs.begin(), h.pairs.end());
+  h.diagonal.assign(h.bodies, Mat6::Identity());  // the mass matrix, here of unit masses
+  h.dense = Eigen::MatrixXd::Identity(6 * h.bodies, 6 * h.bodies);
+  for (const auto& [i, j] : h.pairs) {
+    const Mat6 a = random_block();
+    const Mat6 c = 1e3 * a * a.transpose();  // stiff as a regularised contact, beside the mass
+    h.diagonal[i] += c;
+    h.diagonal[j] += c;
+    h.off_diagonal.push_back(-c);
+    h.dense.block<6, 6>(6 * i, 6 * i) += c;
+    h.dense.block<6, 6>(6 * j, 6 * j) += c;
+    h.dense.block<6, 6>(6 * i, 6 * j) -= c;
+    h.dense.block<6, 6>(6 * j, 6 * i) -= c;
+  }
+  return h;
+}
+
+Eigen::VectorXd solve_at(const Hessian& h, const Eigen::VectorXd& b, int threads, bool& supernodal) {
+  const int before = max_threads();
+  set_threads(threads);
+  IslandFactor factor;
+  factor.set_pattern(h.bodies, h.pairs);
+  Eigen::VectorXd x;
+  EXPECT_TRUE(factor.factorise(h.diagonal, h.off_diagonal));
+  factor.solve(b, x);
+  supernodal = factor.supernodal();
+  set_threads(before);
+  return x;
+}
+
+void expect_solved(const Hessian& h, bool supernodal_expected) {
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(6 * h.bodies, -1, 2);
+  bool supernodal_one = false, supernodal_two = false;
+  const Eigen::VectorXd one = solve_at(h, b, 1, supernodal_one);
+  const Eigen::VectorXd two = solve_at(h, b, 2, supernodal_two);
+  EXPECT_EQ(supernodal_one, supernodal_expected);
+  EXPECT_EQ(supernodal_two, supernodal_expected);
+  // Normwise backward error (Higham, Accuracy and Stability of Numerical Algorithms, 7.1): a
+  // stable factorisation's answer solves a matrix within round-off of H. Measured 5e-18 to
+  // 1.2e-17 (Frobenius norms), under eps.
+  const Real backward = (h.dense * one - b).norm() / (h.dense.norm() * one.norm() + b.norm());
+  EXPECT_LT(backward, 1e-16);
+  const Eigen::VectorXd dense = h.dense.llt().solve(b);
+  EXPECT_LT((one - dense).norm() / dense.norm(), 1e-9);
+  for (Eigen::Index i = 0; i < one.size(); ++i) ASSERT_EQ(one(i), two(i)) << i;
+}
+
+// A 7 x 7 x 7 lattice: its factor holds about 100 entries a column, above the switch (40).
+TEST(IslandFactor, LatticeTakesTheSupernodalFactorisation) {
+  expect_solved(lattice(7, 7, 7, 1), true);
+  expect_solved(lattice(6, 8, 5, 2), true);
+}
+
+// A chain of 60 bodies: its factor has the matrix's own entries only.
+TEST(IslandFactor, ChainTakesTheSimplicialFactorisation) {
+  expect_solved(lattice(60, 1, 1, 3), false);
+  expect_solved(lattice(20, 2, 1, 4), false);
+}
+
+}  // namespace test_island_factor
+}  // namespace tem
