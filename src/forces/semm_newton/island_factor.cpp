@@ -101,7 +101,7 @@ bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
     if (simplicial_factor_->factor_entries() >=
         static_cast<Eigen::Index>(kSupernodalColumnEntries) * n) {
       kind_ = Kind::supernodal;
-      simplicial_factor_.reset();  // its storage for L: 16 MB on a 1,000-coin pile
+      simplicial_factor_.reset();  // its storage for L: some 7 MB on a 1,000-coin pile
       static std::once_flag blas_held;
       std::call_once(blas_held, hold_blas_to_one_thread);
       if (!supernodal_factor_) supernodal_factor_ = std::make_unique<SupernodalFactor>();

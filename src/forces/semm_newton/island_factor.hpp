@@ -13,8 +13,8 @@
 //     dense blocks of hundreds of unknowns. It gathers columns of one pattern into dense blocks
 //     and factorises them with BLAS. Measured on the same matrices (docs/benchmarks.md, "The
 //     island solve"): 0.4-0.7 times as fast as Eigen's below 30 entries a column (a pour's
-//     islands), as fast at 30-40, 1.5 times at 44 and 3.9 times at 95 (the settled 1,000-coin
-//     pile). CHOLMOD switches between its own simplicial and supernodal factorisations by a
+//     islands), as fast at 30-40, 2.3 times at 44 (a benchmark pile of 60 coins) and 3.9
+//     times at 95 (the settled 1,000-coin pile). CHOLMOD switches between its own simplicial and supernodal factorisations by a
 //     rule of the same kind (flops per entry of L, 40).
 // Eigen's symbolic analysis, which counts the factor's entries, is made once per step and
 // decides; the analysis of the chosen factorisation is reused by every iteration of the step
