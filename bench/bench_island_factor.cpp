@@ -5,7 +5,7 @@
 // factorises. Which linear solver pays at which size:
 //   - Eigen's SimplicialLDLT (what island_factor.cpp uses) and SimplicialLLT, AMD ordering;
 //   - CHOLMOD's supernodal Cholesky (SuiteSparse, through Eigen's CholmodSupport), what
-//     island_factor.cpp uses above kSupernodalBodies;
+//     island_factor.cpp uses where the factor holds kSupernodalColumnEntries a column or more;
 //   - conjugate gradients preconditioned by the bodies' 6 x 6 blocks (block_jacobi.hpp), or by
 //     an incomplete Cholesky factor, to a relative residual of 1e-8.
 // Counters: analyse_ms (the symbolic analysis, once per step while the contact graph holds),
