@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 
 #include <Eigen/CholmodSupport>
+#include <algorithm>
 #include <mutex>
 
 #include "support/parallel.hpp"
@@ -59,6 +60,9 @@ IslandFactor& IslandFactor::operator=(IslandFactor&&) noexcept = default;
 IslandFactor::~IslandFactor() = default;
 
 void IslandFactor::set_pattern(int bodies, const std::vector<std::pair<int, int>>& pairs) {
+  // The same pattern as the last step's (a resting island's contact graph): its analysis and
+  // choice of factorisation stand.
+  if (analysed_ && bodies == bodies_ && pairs == pairs_) return;
   bodies_ = bodies;
   pairs_ = pairs;
   kind_ = bodies <= kDenseBodies ? Kind::dense : Kind::simplicial;
@@ -80,22 +84,43 @@ bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
     return dense_factor_.info() == Eigen::Success;
   }
   // Lower triangle: the diagonal blocks' lower halves and every pair's block (i > j). Explicit
-  // zeros are kept, so that the pattern, and with it the symbolic analysis, stays the same.
-  triplets_.clear();
-  triplets_.reserve(static_cast<size_t>(21 * bodies_) + 36 * pairs_.size());
+  // zeros are kept, so that the pattern, and with it the symbolic analysis, stays the same. The
+  // matrix is built from triplets once per pattern, which also finds where each entry lands in
+  // its storage; later factorisations write the values there (the same values in the same
+  // places: the same bits).
+  const bool built = analysed_;
+  size_t next = 0;
+  auto entry = [&](int r, int c, Real value) {
+    if (built) sparse_matrix_.valuePtr()[value_index_[next++]] = value;
+    else triplets_.emplace_back(r, c, value);
+  };
+  if (!built) {
+    triplets_.clear();
+    triplets_.reserve(static_cast<size_t>(21 * bodies_) + 36 * pairs_.size());
+  }
   for (int b = 0; b < bodies_; ++b)
     for (int c = 0; c < 6; ++c)
-      for (int r = c; r < 6; ++r) triplets_.emplace_back(6 * b + r, 6 * b + c, diagonal[b](r, c));
+      for (int r = c; r < 6; ++r) entry(6 * b + r, 6 * b + c, diagonal[b](r, c));
   for (size_t k = 0; k < pairs_.size(); ++k) {
     const auto [i, j] = pairs_[k];
     for (int c = 0; c < 6; ++c)
-      for (int r = 0; r < 6; ++r)
-        triplets_.emplace_back(6 * i + r, 6 * j + c, off_diagonal[k](r, c));
+      for (int r = 0; r < 6; ++r) entry(6 * i + r, 6 * j + c, off_diagonal[k](r, c));
   }
-  sparse_matrix_.resize(n, n);
-  sparse_matrix_.setFromTriplets(triplets_.begin(), triplets_.end());
+  if (!built) {
+    sparse_matrix_.resize(n, n);
+    sparse_matrix_.setFromTriplets(triplets_.begin(), triplets_.end());
+    value_index_.resize(triplets_.size());
+    const auto* outer = sparse_matrix_.outerIndexPtr();
+    const auto* inner = sparse_matrix_.innerIndexPtr();
+    for (size_t t = 0; t < triplets_.size(); ++t) {
+      const Eigen::Index c = triplets_[t].col();
+      value_index_[t] = std::lower_bound(inner + outer[c], inner + outer[c + 1],
+                                         triplets_[t].row()) - inner;
+    }
+  }
   if (!analysed_) {
     analysed_ = true;
+    ++analyses_;
     if (!simplicial_factor_) simplicial_factor_ = std::make_unique<SimplicialFactor>();
     simplicial_factor_->analyzePattern(sparse_matrix_);
     if (simplicial_factor_->factor_entries() >=
