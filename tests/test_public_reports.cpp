@@ -4,12 +4,14 @@
 // mass properties, the warnings a start earns, the solve's counts, a mesh cube's figures.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "support/tem_process.hpp"
 #include "tem/mesh_report.hpp"
@@ -134,6 +136,33 @@ TEST(PublicReports, ContactsBeforeAStepAndTheSolvesCounts) {
   EXPECT_EQ(s.unconverged_steps, 0);
   EXPECT_GT(s.forces, 0);
   EXPECT_EQ(s.sleeping_bodies, 0);
+}
+
+// The median of the solver's iterations over the steps, against the counts of each step read
+// one step at a time (a box that falls, lands and comes to rest: no iterations in the air, some
+// at the landing, few at rest).
+TEST(PublicReports, MedianOfTheSolversIterations) {
+  Simulation sim = Simulation::from_json(R"({"time_step": 1e-3, "duration": 1,
+    "contact": {"model": "semm", "friction": 0.3, "solver": "newton"},
+    "container": {"min": [0, 0, 0], "max": [10, 10, 1]},
+    "bodies": [{"name": "box", "shape": {"type": "box", "size": [0.2, 0.2, 0.1]},
+                "position": [5, 5, 0.2]}]})");
+  std::vector<long long> counts;
+  long long before = 0;
+  for (int k = 0; k < 301; ++k) {
+    sim.step(1);
+    const long long now = sim.run_statistics().solver_iterations;
+    counts.push_back(now - before);
+    before = now;
+  }
+  std::vector<long long> sorted = counts;
+  std::sort(sorted.begin(), sorted.end());
+  ASSERT_LT(sorted.front(), sorted.back());  // the counts differ from step to step
+  EXPECT_EQ(sim.run_statistics().median_solver_iterations, sorted[150]);
+  sim.step(1);  // 302 steps: the lower of the two middle ones
+  counts.push_back(sim.run_statistics().solver_iterations - before);
+  std::sort(counts.begin(), counts.end());
+  EXPECT_EQ(sim.run_statistics().median_solver_iterations, counts[150]);
 }
 
 // A unit cube mesh scaled by 2: volume 8, one block when cut exactly; an open one is refused.

@@ -231,7 +231,7 @@ def run_case(args, mu, mur, tight=False):
         for line in open(logf):
             if line.startswith("tem run:") and "steps/s" in line:
                 res["log"] = line.strip()
-            if "contact solver" in line:
+            if "contact solver" in line and "solver" not in res:  # the averages' line
                 res["solver"] = line.strip()
     return res
 

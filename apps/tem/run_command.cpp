@@ -25,20 +25,24 @@ void print_summary(const Simulation& sim, double wall) {
   const SceneDef& scene = sim.scene();
   const double steps = static_cast<double>(std::max<long long>(t.steps, 1));
   const SystemEnergies e = sim.energies();
+  const char* iterations =
+      scene.contact.solver == ContactSolver::newton ? "Newton iterations" : "sweeps";
   std::fprintf(stderr,
                "tem run: %lld steps to t = %.6g s in %.3f s (%.0f steps/s, %.2f us/step)\n"
                "  per step: broad phase %.2f us, narrow phase + patches %.2f us, forces %.2f us, "
                "integration %.2f us\n"
                "  contact solver: %.2f %s per step on average, %d at most, %lld steps "
                "unconverged, %lld scaled to add no energy\n"
+               "  contact solver: %d %s per step at the median\n"
                "  contacts: %.1f patches and %.1f points per step on average, %.2f us per patch "
                "(all stages)\n"
                "  final energy: kinetic %.9g, potential %.9g, total %.9g\n",
                t.steps, sim.time(), wall, t.steps / std::max(wall, 1e-9), 1e6 * wall / steps,
                1e6 * t.broad_phase / steps, 1e6 * t.narrow_phase / steps, 1e6 * t.forces / steps,
                1e6 * t.integrate / steps, static_cast<double>(t.solver_iterations) / steps,
-               scene.contact.solver == ContactSolver::newton ? "Newton iterations" : "sweeps",
-               t.max_solver_iterations, t.unconverged_steps, t.scaled_steps, t.patches / steps,
+               iterations,
+               t.max_solver_iterations, t.unconverged_steps, t.scaled_steps,
+               t.median_solver_iterations, iterations, t.patches / steps,
                t.points / steps, t.patches > 0 ? 1e6 * wall / static_cast<double>(t.patches) : 0.0,
                e.kinetic, e.potential, e.total());
   if (scene.contact.max_substeps > scene.contact.substeps)

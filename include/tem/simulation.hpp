@@ -73,9 +73,11 @@ struct RunStatistics {
   double forces = 0;        // the contact solve
   double integrate = 0;
   // The contact solver's iterations (Gauss-Seidel sweeps, or Newton iterations with
-  // contact.solver "newton"), summed over the steps, and the most one step took.
+  // contact.solver "newton": those of the island that took most), summed over the steps, the
+  // most one step took, and the median over the steps (the lower one of an even count).
   long long solver_iterations = 0;
   int max_solver_iterations = 0;
+  int median_solver_iterations = 0;
   long long unconverged_steps = 0;  // steps whose solve stopped at its iteration limit
   long long scaled_steps = 0;       // steps whose impulses were scaled down to add no energy
   long long corrected_steps = 0;    // steps whose overlap correction moved bodies apart

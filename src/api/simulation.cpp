@@ -390,6 +390,14 @@ RunStatistics Simulation::run_statistics() const {
   r.integrate = t.integrate;
   r.solver_iterations = t.sweeps;
   r.max_solver_iterations = t.max_sweeps;
+  long long below = 0;  // steps that took at most `count` iterations
+  for (size_t count = 0; count < t.steps_by_sweeps.size(); ++count) {
+    below += t.steps_by_sweeps[count];
+    if (2 * below >= t.steps) {
+      r.median_solver_iterations = static_cast<int>(count);
+      break;
+    }
+  }
   r.unconverged_steps = t.unconverged_steps;
   r.scaled_steps = t.scaled_steps;
   r.corrected_steps = t.corrected_steps;

@@ -216,6 +216,9 @@ void advance(const Model& model, State& state, Workspace& w) {
   w.times.points += static_cast<long long>(w.forces.points.size());
   w.times.sweeps += sweeps;
   w.times.max_sweeps = std::max(w.times.max_sweeps, sweeps);
+  if (static_cast<int>(w.times.steps_by_sweeps.size()) <= sweeps)
+    w.times.steps_by_sweeps.resize(static_cast<size_t>(sweeps) + 1, 0);
+  ++w.times.steps_by_sweeps[static_cast<size_t>(sweeps)];
   if (unconverged) ++w.times.unconverged_steps;
   if (scaled) ++w.times.scaled_steps;
 }

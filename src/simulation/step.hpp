@@ -22,9 +22,11 @@ struct StageTimes {
   double forces = 0;
   double integrate = 0;
   long long steps = 0;
-  // The most Gauss-Seidel sweeps one step took, and their sum (for the mean).
+  // The most Gauss-Seidel sweeps (or Newton iterations) one step took, their sum (for the mean),
+  // and how many steps took each count (for the median).
   int max_sweeps = 0;
   long long sweeps = 0;
+  std::vector<long long> steps_by_sweeps;
   long long unconverged_steps = 0;
   long long fallback_islands = 0;  // contact.solver "newton": islands left to the row solver
   long long regularised_islands = 0;  // and islands that kept the regularised answer
