@@ -126,6 +126,9 @@ int run_distributed_command(const std::string& scene_file, const std::string& ou
             static_cast<double>(t.solver_iterations) /
                 static_cast<double>(std::max<long long>(t.steps, 1)),
             t.max_solver_iterations, t.unconverged_steps, t.scaled_steps, t.corrected_steps);
+      if (scene.contact.model != ContactModel::penalty)
+        std::fprintf(stderr, "  contact solver: %d sweeps per step at the median\n",
+                     t.median_solver_iterations);
       print_distributed_summary(result);
       std::cerr << "tem run: results in " << out_dir << "/ (bodies.csv, energy.csv"
                 << (contacts ? ", contacts.csv" : "") << ", scene.json, checkpoint.bin"

@@ -24,8 +24,9 @@
 
 namespace tem {
 
-struct ContactForces;  // contact_forces.hpp
-class SolverSync;      // solver_sync.hpp
+struct ContactForces;   // contact_forces.hpp
+class SolverSync;       // solver_sync.hpp
+struct SolverSettings;  // semm.hpp
 
 // One solve's inputs (compute_contact_forces, contact_forces.hpp, says what each is).
 struct ForceStep {
@@ -56,6 +57,12 @@ class ForceModel {
   // Whether stage 6, the overlap correction (overlap_correction.hpp), follows the model's
   // steps: for a model whose impulses keep the energy budget the correction spends.
   virtual bool corrects_overlap() const { return false; }
+  // Its move, by the model's own solver (a model that corrects overlap overrides it): the
+  // pseudo velocities f.correction.moved that separate f.points at `targets`, from the bodies
+  // f.correction.still, on the working patches f.correction.patches (solve_separation, semm.hpp);
+  // `stopping` gives the tolerance, the sweeps, the held points and the ranks.
+  virtual void separate(const std::vector<Real>& targets, const SolverSettings& stopping,
+                        ContactForces& f) const;
   // Over MPI ranks (docs/distributed.md): whether each contact is solved once, by the ranks
   // together (solver_sync.hpp), its memory with the rank of body A; or each rank finds the
   // forces of its own bodies' contacts, and its memory travels with the bodies it lends to

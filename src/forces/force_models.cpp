@@ -1,5 +1,8 @@
 // The one place that knows every force model (force_model.hpp).
 #include "forces/force_model.hpp"
+
+#include <stdexcept>
+
 #include "forces/penalty/penalty_model.hpp"
 #include "forces/semm_blocks/blocks_model.hpp"
 #include "forces/semm_newton/newton_model.hpp"
@@ -7,6 +10,12 @@
 #include "forces/semm_rows/rows_model.hpp"
 
 namespace tem {
+
+void ForceModel::separate(const std::vector<Real>& /*targets*/,
+                          const SolverSettings& /*stopping*/, ContactForces& /*f*/) const {
+  throw std::logic_error("the overlap correction asked its move of a force model that does not "
+                         "correct overlap");
+}
 
 const ForceModel& force_model(const ContactDef& contact) {
   switch (contact.model) {

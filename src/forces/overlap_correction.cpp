@@ -50,12 +50,9 @@ CorrectionReport correct_overlap(const Model& model, ContactForces& f, Real dt,
   stopping.colour_sweeps = model.scene.contact.colour_sweeps;
   stopping.sync = sync;
   stopping.held = &held;
-  // The scalar-row solver where the step used it or Newton (its memory is free by now), the
-  // block solver where the step used that.
-  RowSolverMemory* rows = model.scene.contact.solver != ContactSolver::blocks ? &f.rows : nullptr;
+  // By the step's own solver (force_model.hpp).
   f.correction.patches = f.friction;
-  solve_separation(f.points, targets, still, f.centres, f.correction.patches,
-                   f.correction.impulses, moved, stopping, rows);
+  force_model(model.scene.contact).separate(targets, stopping, f);
 
   // The potential energy the move costs, against what the step dissipated.
   Real lift = 0;

@@ -144,6 +144,12 @@ SolverSettings begin_default_semm(const ForceStep& step, ContactForces& f) {
   return settings;
 }
 
+void DefaultSemmModel::separate(const std::vector<Real>& targets, const SolverSettings& stopping,
+                                ContactForces& f) const {
+  solve_separation(f.points, targets, f.correction.still, f.centres, f.correction.patches,
+                   f.correction.impulses, f.correction.moved, stopping, &f.rows);
+}
+
 void semm_impulses_to_forces(Real dt, bool friction, ContactForces& f) {
   auto push = [&](int body_a, int body_b, const Vec3& at, const Vec3& on_b, const Vec3& moment) {
     add_contact_force(f.centres, body_a, body_b, at, on_b, moment, f.force, f.torque);

@@ -14,6 +14,12 @@ class BlocksModel final : public DefaultSemmModel {
                           f.impulses);
     semm_impulses_to_forces(step.dt, true, f);
   }
+  // By patch blocks, as the step.
+  void separate(const std::vector<Real>& targets, const SolverSettings& stopping,
+                ContactForces& f) const override {
+    solve_separation(f.points, targets, f.correction.still, f.centres, f.correction.patches,
+                     f.correction.impulses, f.correction.moved, stopping);
+  }
   std::string not_distributed_because() const override {
     return "over MPI ranks SEMM runs with contact.solver 'rows' (the default); 'blocks' is not "
            "distributed: run this scene without mpirun, or with the rows solver";

@@ -14,8 +14,11 @@ namespace {
 // CHOLMOD's supernodal factorisation calls BLAS (dpotrf, dsyrk, dgemm, dtrsm) on its dense
 // blocks. A threaded BLAS splits those among threads in blocks that depend on how many it has,
 // and so rounds differently at different thread counts; TEM promises the same bits at any
-// thread count, so the BLAS is held to one thread. Of the BLAS Debian offers, OpenBLAS is
-// threaded: its OpenMP build follows the caller's OpenMP thread count, which serially()
+// thread count, so the BLAS is held to one thread. scripts/install_deps.sh installs OpenBLAS's
+// serial build, which has no threads (Debian's reference BLAS, which CHOLMOD gets otherwise,
+// makes a settled 1,000-coin pile's Newton step 2.6 times as long: docs/benchmarks.md). Where
+// a threaded OpenBLAS is chosen instead (Debian's alternatives prefer it where installed): its
+// OpenMP build follows the caller's OpenMP thread count, which serially()
 // (support/parallel.hpp) sets to one around each factorisation; its pthreads build has its own
 // count, set here to one. Its setter is looked up where it is loaded: in the program's global
 // scope, or in the library loaded beside this one (a Python extension's libraries are loaded
@@ -117,6 +120,9 @@ bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
       value_index_[t] = std::lower_bound(inner + outer[c], inner + outer[c + 1],
                                          triplets_[t].row()) - inner;
     }
+    // Not needed again until the pattern changes: some 2 MB on a 1,000-coin pile.
+    triplets_.clear();
+    triplets_.shrink_to_fit();
   }
   if (!analysed_) {
     analysed_ = true;
