@@ -8,10 +8,13 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cstdlib>
 #include <random>
+#include <string>
 #include <utility>
 #include <vector>
 
+#include "forces/semm_newton/blas_setup.hpp"
 #include "forces/semm_newton/island_factor.hpp"
 #include "support/parallel.hpp"
 
@@ -94,6 +97,20 @@ void expect_solved(const Hessian& h, bool supernodal_expected) {
   const Eigen::VectorXd dense = h.dense.llt().solve(b);
   EXPECT_LT((one - dense).norm() / dense.norm(), 1e-9);
   for (Eigen::Index i = 0; i < one.size(); ++i) ASSERT_EQ(one(i), two(i)) << i;
+}
+
+// Once a supernodal factorisation has set the BLAS up, OpenBLAS runs kernels of the instruction
+// sets the CPU has, not its SSE3 fallback for a CPU it does not know (blas_setup.cpp).
+TEST(IslandFactor, BlasRunsKernelsOfTheCpusInstructionSets) {
+  expect_solved(lattice(7, 7, 7, 1), true);
+  const std::string kernels = newton::blas_kernels();
+  if (kernels.empty()) GTEST_SKIP() << "the BLAS is not OpenBLAS";
+  if (std::getenv("OPENBLAS_CORETYPE")) GTEST_SKIP() << "OPENBLAS_CORETYPE chooses the kernels";
+  __builtin_cpu_init();
+  if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma"))
+    GTEST_SKIP() << "the CPU has no AVX2 and FMA";
+  ::testing::Test::RecordProperty("OpenBLAS kernels", kernels);
+  EXPECT_NE(kernels, "Prescott");
 }
 
 // A 7 x 7 x 7 lattice: its factor holds about 100 entries a column, above the switch (40).

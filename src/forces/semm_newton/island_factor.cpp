@@ -1,46 +1,13 @@
 #include "forces/semm_newton/island_factor.hpp"
 
-#include <dlfcn.h>
-
 #include <Eigen/CholmodSupport>
 #include <algorithm>
 #include <mutex>
 
+#include "forces/semm_newton/blas_setup.hpp"
 #include "support/parallel.hpp"
 
 namespace tem::newton {
-namespace {
-
-// CHOLMOD's supernodal factorisation calls BLAS (dpotrf, dsyrk, dgemm, dtrsm) on its dense
-// blocks. A threaded BLAS splits those among threads in blocks that depend on how many it has,
-// and so rounds differently at different thread counts; TEM promises the same bits at any
-// thread count, so the BLAS is held to one thread. scripts/install_deps.sh installs OpenBLAS's
-// serial build, which has no threads (Debian's reference BLAS, which CHOLMOD gets otherwise,
-// makes a settled 1,000-coin pile's Newton step 2.6 times as long: docs/benchmarks.md). Where
-// a threaded OpenBLAS is chosen instead (Debian's alternatives prefer it where installed): its
-// OpenMP build follows the caller's OpenMP thread count, which serially()
-// (support/parallel.hpp) sets to one around each factorisation; its pthreads build has its own
-// count, set here to one. Its setter is looked up where it is loaded: in the program's global
-// scope, or in the library loaded beside this one (a Python extension's libraries are loaded
-// locally, out of the global scope). The OpenMP build's setter also sets the calling thread's
-// OpenMP thread count, which TEM's own regions use, so that count is put back.
-void hold_blas_to_one_thread() {
-  using Setter = void (*)(int);
-  auto* setter = reinterpret_cast<Setter>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-  for (const char* library : {"libopenblas.so.0", "libblas.so.3"}) {
-    if (setter) break;
-    if (void* handle = dlopen(library, RTLD_NOW | RTLD_NOLOAD)) {
-      setter = reinterpret_cast<Setter>(dlsym(handle, "openblas_set_num_threads"));
-      dlclose(handle);
-    }
-  }
-  if (!setter) return;
-  const int threads = max_threads();
-  setter(1);
-  set_threads(threads);
-}
-
-}  // namespace
 
 struct IslandFactor::SimplicialFactor
     : Eigen::SimplicialLDLT<Eigen::SparseMatrix<Real>, Eigen::Lower> {
@@ -133,8 +100,8 @@ bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
         static_cast<Eigen::Index>(kSupernodalColumnEntries) * n) {
       kind_ = Kind::supernodal;
       simplicial_factor_.reset();  // its storage for L: some 7 MB on a 1,000-coin pile
-      static std::once_flag blas_held;
-      std::call_once(blas_held, hold_blas_to_one_thread);
+      static std::once_flag blas_prepared;
+      std::call_once(blas_prepared, prepare_blas);
       if (!supernodal_factor_) supernodal_factor_ = std::make_unique<SupernodalFactor>();
       serially([&] { supernodal_factor_->analyzePattern(sparse_matrix_); });
     }
