@@ -16,10 +16,12 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 #include <chrono>
+#include <mutex>
 #include <vector>
 
 #include "bench_scenes.hpp"
 #include "contact/detect_contacts.hpp"
+#include "forces/semm_newton/blas_setup.hpp"
 #include "block_jacobi.hpp"
 #include "support/parallel.hpp"
 #include <Eigen/CholmodSupport>
@@ -155,6 +157,10 @@ void BM_IslandFactorEigenLLT(benchmark::State& st) {
 }
 
 void BM_IslandFactorCholmod(benchmark::State& st) {
+  // As island_factor.cpp: the BLAS on one thread, with the kernels of the CPU's instruction sets
+  // (OPENBLAS_CORETYPE=Prescott in the environment measures OpenBLAS's fallback instead).
+  static std::once_flag blas_prepared;
+  std::call_once(blas_prepared, newton::prepare_blas);
   const PileHessian h = pile_hessian(static_cast<int>(st.range(0)));
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> factor;
   direct(st, h, factor);

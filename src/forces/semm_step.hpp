@@ -41,8 +41,8 @@ class DefaultSemmModel : public ForceModel {
   bool corrects_overlap() const override { return true; }
   // By the scalar-row solver in its memory f.rows (the blocks model overrides it). Newton's
   // steps too: a correction solved by Newton converges where the sweeps stop at 500, but took
-  // ten times as long on a settled pile and cycled in a pour (docs/benchmarks.md, "SEMM by
-  // Newton").
+  // ten times as long on a settled pile and cycled in a pour (docs/benchmarks.md, "The BLAS,
+  // and the overlap correction by Newton").
   void separate(const std::vector<Real>& targets, const SolverSettings& stopping,
                 ContactForces& f) const override;
   bool solves_across_ranks() const override { return true; }

@@ -49,12 +49,13 @@ void hold_to_one_thread() {
 // takes its oldest x86-64 kernels (Prescott: SSE3) for a model newer than its table: OpenBLAS
 // 0.3.21 on this project's machines (Xeon, family 6 model 207) did, and a settled 1,000-coin
 // pile's Newton step took 1.2 times as long as with its AVX-512 kernels, the 1,000-coin pour's
-// crash 1.3 times (docs/benchmarks.md, "The BLAS"). Where the user has not chosen the kernels (OPENBLAS_CORETYPE, OpenBLAS's own
-// setting) and OpenBLAS fell back so on a CPU with AVX2 and FMA, they are chosen here by the
-// instruction sets it has: SkylakeX's with AVX-512 (F, CD, BW, DQ, VL), else Haswell's. OpenBLAS
-// reads OPENBLAS_CORETYPE when it initialises its kernel table, which is made again here (before
-// any BLAS call of TEM's); the variable is removed again after, so child processes choose
-// their own.
+// crash 1.3 times (docs/benchmarks.md, "The BLAS, and the overlap correction by Newton"). Where
+// the user has not chosen the kernels (OPENBLAS_CORETYPE, OpenBLAS's own setting) and OpenBLAS
+// fell back so on a CPU with AVX2 and FMA, they are chosen here by the instruction sets it has
+// (as the OS enables them: __builtin_cpu_supports reads both): SkylakeX's with AVX-512 (F, CD,
+// BW, DQ, VL), else Haswell's. OpenBLAS reads OPENBLAS_CORETYPE when it makes its kernel table,
+// which is made again here (before any BLAS call of TEM's); the variable is removed after, so
+// that child processes choose their own.
 void choose_kernels() {
   using Name = const char* (*)();
   using Call = void (*)();
