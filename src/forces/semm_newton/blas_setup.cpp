@@ -57,13 +57,11 @@ void hold_to_one_thread() {
 // which is made again here (before any BLAS call of TEM's); the variable is removed after, so
 // that child processes choose their own.
 void choose_kernels() {
-  using Name = const char* (*)();
   using Call = void (*)();
-  auto* name = reinterpret_cast<Name>(openblas_function("openblas_get_corename"));
   auto* quit = reinterpret_cast<Call>(openblas_function("gotoblas_dynamic_quit"));
   auto* init = reinterpret_cast<Call>(openblas_function("gotoblas_dynamic_init"));
-  if (!name || !quit || !init || std::getenv("OPENBLAS_CORETYPE")) return;
-  if (strcasecmp(name(), "Prescott") != 0) return;
+  if (!quit || !init || std::getenv("OPENBLAS_CORETYPE")) return;
+  if (strcasecmp(blas_kernels(), "Prescott") != 0) return;
   __builtin_cpu_init();
   const bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
                       __builtin_cpu_supports("avx512bw") &&

@@ -72,7 +72,6 @@ class IslandFactor {
   int analyses_ = 0;
   Eigen::MatrixXd dense_matrix_;
   Eigen::LLT<Eigen::MatrixXd> dense_factor_;
-  std::vector<Eigen::Triplet<Real>> triplets_;
   Eigen::SparseMatrix<Real> sparse_matrix_;  // lower triangle, compressed
   std::vector<Eigen::Index> value_index_;    // where each entry lands in its values
   struct SimplicialFactor;  // Eigen's, with the count of its factor's entries
