@@ -5,7 +5,7 @@
 // factorises. Which linear solver pays at which size:
 //   - Eigen's SimplicialLDLT (what island_factor.cpp uses) and SimplicialLLT, AMD ordering;
 //   - CHOLMOD's supernodal Cholesky (SuiteSparse, through Eigen's CholmodSupport), what
-//     island_factor.cpp uses where the factor holds kSupernodalColumnEntries a column or more;
+//     island_factor.cpp uses where the factorisation takes kSupernodalFlopsPerEntry flops an entry;
 //   - conjugate gradients preconditioned by the bodies' 6 x 6 blocks (block_jacobi.hpp), or by
 //     an incomplete Cholesky factor, to a relative residual of 1e-8.
 // Counters: analyse_ms (the symbolic analysis, once per step while the contact graph holds),
@@ -162,7 +162,7 @@ void BM_IslandFactorCholmod(benchmark::State& st) {
   static std::once_flag blas_prepared;
   std::call_once(blas_prepared, newton::prepare_blas);
   const PileHessian h = pile_hessian(static_cast<int>(st.range(0)));
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> factor;
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper> factor;  // as island_factor.cpp
   direct(st, h, factor);
   st.counters["factor_nnz"] = static_cast<double>(factor.cholmod().lnz);
 }

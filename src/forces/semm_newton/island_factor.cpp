@@ -10,14 +10,28 @@
 namespace tem::newton {
 
 struct IslandFactor::SimplicialFactor
-    : Eigen::SimplicialLDLT<Eigen::SparseMatrix<Real>, Eigen::Lower> {
-  // Entries of L below the diagonal, known from the symbolic analysis: Eigen sizes L's storage
-  // there (SimplicialCholeskyBase::analyzePattern_preordered) but says so only after factorize.
-  Eigen::Index factor_entries() const { return m_matrix.nonZeros(); }
+    : Eigen::SimplicialLDLT<Eigen::SparseMatrix<Real>, Eigen::Upper> {
+  // The factorisation's flops per entry of L, from the entries below the diagonal of each of
+  // L's columns that the symbolic analysis counts (SimplicialCholeskyBase::analyzePattern): a
+  // column of c entries costs some c^2 flops. CHOLMOD chooses between its own simplicial and
+  // supernodal factorisations by the same ratio (Common->fl / Common->lnz against
+  // supernodal_switch, 40).
+  double flops_per_entry() const {
+    double flops = 0, entries = 0;
+    for (Eigen::Index j = 0; j < m_nonZerosPerCol.size(); ++j) {
+      const double column = m_nonZerosPerCol[j];
+      flops += column * column;
+      entries += column;
+    }
+    return entries > 0 ? flops / entries : 0;
+  }
 };
 
+// Given a symmetric matrix's upper triangle, CHOLMOD's supernodal factorisation permutes and
+// transposes it once a factorisation (cholmod_factorize: "the fastest option for factoring a
+// permuted matrix"); given the lower, twice.
 struct IslandFactor::SupernodalFactor
-    : Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<Real>, Eigen::Lower> {};
+    : Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<Real>, Eigen::Upper> {};
 
 IslandFactor::IslandFactor() = default;
 IslandFactor::IslandFactor(const IslandFactor& other) { *this = other; }
@@ -53,11 +67,11 @@ bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
     dense_factor_.compute(dense_matrix_);
     return dense_factor_.info() == Eigen::Success;
   }
-  // Lower triangle: the diagonal blocks' lower halves and every pair's block (i > j). Explicit
-  // zeros are kept, so that the pattern, and with it the symbolic analysis, stays the same. The
-  // matrix is built from triplets once per pattern, which also finds where each entry lands in
-  // its storage; later factorisations write the values there (the same values in the same
-  // places: the same bits).
+  // Upper triangle: the diagonal blocks' upper halves and every pair's block (i > j)
+  // transposed, at block row j and block column i. Explicit zeros are kept, so that the
+  // pattern, and with it the symbolic analysis, stays the same. The matrix is built from
+  // triplets once per pattern, which also finds where each entry lands in its storage; later
+  // factorisations write the values there (the same values in the same places: the same bits).
   const bool built = analysed_;
   size_t next = 0;
   std::vector<Eigen::Triplet<Real>> triplets;  // a new pattern's entries, until it is built
@@ -68,11 +82,11 @@ bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
   if (!built) triplets.reserve(static_cast<size_t>(21 * bodies_) + 36 * pairs_.size());
   for (int b = 0; b < bodies_; ++b)
     for (int c = 0; c < 6; ++c)
-      for (int r = c; r < 6; ++r) entry(6 * b + r, 6 * b + c, diagonal[b](r, c));
+      for (int r = c; r < 6; ++r) entry(6 * b + c, 6 * b + r, diagonal[b](r, c));
   for (size_t k = 0; k < pairs_.size(); ++k) {
     const auto [i, j] = pairs_[k];
     for (int c = 0; c < 6; ++c)
-      for (int r = 0; r < 6; ++r) entry(6 * i + r, 6 * j + c, off_diagonal[k](r, c));
+      for (int r = 0; r < 6; ++r) entry(6 * j + c, 6 * i + r, off_diagonal[k](r, c));
   }
   if (!built) {
     sparse_matrix_.resize(n, n);
@@ -91,8 +105,7 @@ bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
     ++analyses_;
     if (!simplicial_factor_) simplicial_factor_ = std::make_unique<SimplicialFactor>();
     simplicial_factor_->analyzePattern(sparse_matrix_);
-    if (simplicial_factor_->factor_entries() >=
-        static_cast<Eigen::Index>(kSupernodalColumnEntries) * n) {
+    if (simplicial_factor_->flops_per_entry() >= kSupernodalFlopsPerEntry) {
       kind_ = Kind::supernodal;
       simplicial_factor_.reset();  // its storage for L: some 7 MB on a 1,000-coin pile
       static std::once_flag blas_prepared;

@@ -8,17 +8,18 @@
 //   - at most kDenseBodies bodies (a grain on the floor, a few touching): a dense Cholesky;
 //   - larger: Eigen's sparse Cholesky (SimplicialLDLT, approximate minimum degree ordering),
 //     column by column, where the factor is sparse: chains and the loose clusters of a pour;
-//   - CHOLMOD's supernodal Cholesky (SuiteSparse) where the factor's columns hold on average at
-//     least kSupernodalColumnEntries entries below the diagonal: a pile, whose separators are
-//     dense blocks of hundreds of unknowns. It gathers columns of one pattern into dense blocks
-//     and factorises them with BLAS. Measured on the same matrices (docs/benchmarks.md, "The
-//     island solve"): 0.4-0.7 times as fast as Eigen's below 30 entries a column (a pour's
-//     islands), as fast at 30-40, 2.3 times at 44 (a benchmark pile of 60 coins) and 3.9
-//     times at 95 (the settled 1,000-coin pile). CHOLMOD switches between its own simplicial and supernodal factorisations by a
-//     rule of the same kind (flops per entry of L, 40).
-// Eigen's symbolic analysis, which counts the factor's entries, is made once per pattern and
-// decides; the analysis of the chosen factorisation is reused by every iteration of the step
-// (the pattern holds every row, pushing or not) and by the next steps while the island's
+//   - CHOLMOD's supernodal Cholesky (SuiteSparse) where the factorisation takes at least
+//     kSupernodalFlopsPerEntry flops per entry of the factor (a column of c entries below the
+//     diagonal costs c^2): a pile, whose separators are dense blocks of hundreds of unknowns,
+//     and a pour's large islands. It gathers columns of one pattern into dense blocks and
+//     factorises them with BLAS. CHOLMOD chooses between its own two factorisations by the
+//     same ratio and bound. Measured on every matrix of real runs (docs/benchmarks.md, "The
+//     island solve"): the rule takes 9 % off the factorisations of a 1,000-coin pour's crash
+//     against the one before it (40 entries a column on average), within 1 % of choosing the
+//     faster for each matrix, and leaves 100-coin pours and columns as they were.
+// Eigen's symbolic analysis, which counts the entries of the factor's columns, is made once per
+// pattern and decides; the analysis of the chosen factorisation is reused by every iteration of
+// the step (the pattern holds every row, pushing or not) and by the next steps while the island's
 // pattern stays the same (its contact graph unchanged: 16 of 41 steps on the settled
 // 1,000-coin pile, none in a pour's crash). The choice depends only on the pattern, so it is
 // the same at any thread count and across a resume; so that the BLAS gives the same bits too, it
@@ -38,7 +39,7 @@
 namespace tem::newton {
 
 inline constexpr int kDenseBodies = 8;
-inline constexpr int kSupernodalColumnEntries = 40;
+inline constexpr double kSupernodalFlopsPerEntry = 40;
 
 class IslandFactor {
  public:
@@ -72,7 +73,7 @@ class IslandFactor {
   int analyses_ = 0;
   Eigen::MatrixXd dense_matrix_;
   Eigen::LLT<Eigen::MatrixXd> dense_factor_;
-  Eigen::SparseMatrix<Real> sparse_matrix_;  // lower triangle, compressed
+  Eigen::SparseMatrix<Real> sparse_matrix_;  // upper triangle, compressed
   std::vector<Eigen::Index> value_index_;    // where each entry lands in its values
   struct SimplicialFactor;  // Eigen's, with the count of its factor's entries
   struct SupernodalFactor;  // CHOLMOD's, defined where its header is included: the .cpp
