@@ -474,11 +474,53 @@ bool newton_iterations(Island& island, const std::vector<BodyResponse>& bodies,
   }
 }
 
-// The energy rule of friction (semm.cpp, friction_block): a friction, twist or rolling impulse
-// that pushes along the slip the step started with would do the work
-// gamma . (u_start + u_after) / 2 > 0; such a row asks from now on for its start velocity
+// The work the impulses of `s` do over the step: each row's gamma . (u_start + u_after) / 2,
+// u_after what the impulses read off the rows give the bodies (y, to the tolerance); and its
+// part quadratic in the impulses, gamma . (u_after - u_free) / 2 (`curvature`).
+struct StepWork {
+  Real added = 0, curvature = 0;
+  // Round-off: the velocities after the step carry that of their change, so the work carries
+  // some epsilon of the curvature; a body held exactly at rest (the polish lands there) would
+  // otherwise add energy in most steps.
+  bool adds_energy() const {
+    return added > 64 * std::numeric_limits<Real>::epsilon() * std::abs(curvature);
+  }
+};
+
+StepWork step_work(const Island& island, const std::vector<BodyResponse>& bodies,
+                   const IslandProblem& problem, const NewtonState& s) {
+  NewtonState given, free_motion;
+  given.y = problem.free + mobility_times(island, bodies, problem, s);
+  evaluate(island, problem, given, -1, false);
+  free_motion.y = problem.free;
+  evaluate(island, problem, free_motion, -1, false);
+  StepWork work;
+  for (size_t r = 0; r < island.rows.size(); ++r) {
+    const Row& row = island.rows[r];
+    const Vec2& gamma = s.response[r].impulse;
+    if (gamma.isZero(0)) continue;
+    // u without the mirrored start: the row's real velocity.
+    const Vec2 shift = row.mirrored ? row.start : Vec2::Zero();
+    work.added += gamma.dot(row.start + given.u[r] - shift) / 2;
+    work.curvature += gamma.dot(given.u[r] - free_motion.u[r]) / 2;
+  }
+  return work;
+}
+
+// The energy rule of friction, applied to the island: should its impulses add energy over the
+// step, each friction, twist or rolling row whose impulse pushes along the slip the step started
+// with (the work gamma . (u_start + u_after) / 2 > 0) asks from now on for its start velocity
 // mirrored (u_after = -u_start, no work) instead of none. Returns whether a row was mirrored.
-bool mirror_rows(std::vector<Row>& rows, const NewtonState& s) {
+// Why not row by row, as the row solver (semm.cpp, friction_block): the regularised friction
+// leaves a resting row the creep R (c - gamma), and a row whose impulse pushes along last step's
+// creep was mirrored: some 800 of the settled 1,000-coin pile's 2,940 slip rows in every step,
+// while the island as a whole took energy out. Each mirror cost the island another pass (a
+// resting column took four iterations a step instead of one) and kept the row's creep, reversed,
+// instead of ending it (docs/benchmarks.md, "The energy rule of friction, per island").
+bool mirror_rows(Island& island, const std::vector<BodyResponse>& bodies,
+                 const IslandProblem& problem, const NewtonState& s) {
+  if (!step_work(island, bodies, problem, s).adds_energy()) return false;
+  std::vector<Row>& rows = island.rows;
   bool mirrored = false;
   for (size_t r = 0; r < rows.size(); ++r) {
     Row& row = rows[r];
@@ -562,11 +604,11 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
     for (size_t r = 0; r < rows.size(); ++r)
       normal[r] = rows[r].kind == Row::Kind::normal ? s.response[r].impulse.x() : 0;
     set_limits(problem, rows, normal, change, largest);
-    bool again = mirror_rows(rows, s) || change > tolerance * largest;
+    bool again = mirror_rows(island, bodies, problem, s) || change > tolerance * largest;
     while (solved && again) {
       solved = newton_iterations(island, bodies, problem, s, band, tolerance,
                                  kMaxNewtonIterations);
-      again = solved && mirror_rows(rows, s);
+      again = solved && mirror_rows(island, bodies, problem, s);
     }
   }
   island.converged = solved;
@@ -597,7 +639,7 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
           rows[r].held = false;
           let_go = true;
         }
-      if (!mirror_rows(rows, s) && !let_go) break;
+      if (!mirror_rows(island, bodies, problem, s) && !let_go) break;
       polished =
           newton_iterations(island, bodies, problem, s, band, tolerance, budget, true);
     }
@@ -608,33 +650,16 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
     }
   }
   evaluate(island, problem, s, -1, false);
-  // The velocities the impulses read off the rows give the bodies (y, to the tolerance).
-  NewtonState given;
-  given.y = problem.free + mobility_times(island, bodies, problem, s);
-  evaluate(island, problem, given, -1, false);
-
-  // Energy over the step (semm_rows.cpp, energy_scale): each row's impulse does the work
-  // gamma . (u_start + u_after) / 2; should the sum be positive beyond round-off, scale every
-  // impulse of the island by the largest s with s B + s^2 A <= 0. Round-off: the velocities
-  // after the step carry that of their change, so the sum carries some epsilon of A; a body
-  // held exactly at rest (the polish lands there) would otherwise have its impulses scaled by
-  // 1 - 2e-16 in most steps, which changes nothing but the count of scaled steps.
-  Real added = 0, curvature = 0;
-  NewtonState free_state;
-  free_state.y = problem.free;
-  evaluate(island, problem, free_state, -1, false);
-  for (size_t r = 0; r < rows.size(); ++r) {
-    const Vec2& gamma = s.response[r].impulse;
-    if (gamma.isZero(0)) continue;
-    // u without the mirrored start: the row's real velocity.
-    const Vec2 shift = rows[r].mirrored ? rows[r].start : Vec2::Zero();
-    added += gamma.dot(rows[r].start + given.u[r] - shift) / 2;
-    curvature += gamma.dot(given.u[r] - free_state.u[r]) / 2;
-  }
+  // Energy over the step (semm_rows.cpp, energy_scale): should the impulses still add energy,
+  // every impulse of the island is scaled by the largest s with s B + s^2 A <= 0 (A the work's
+  // curvature, B its part linear in the impulses).
+  const StepWork work = step_work(island, bodies, problem, s);
   island.scale = 1;
-  if (added > 64 * std::numeric_limits<Real>::epsilon() * std::abs(curvature)) {
-    const Real linear = added - curvature;
-    island.scale = linear < 0 && curvature > 0 ? std::clamp<Real>(-linear / curvature, 0, 1) : 0;
+  if (work.adds_energy()) {
+    const Real linear = work.added - work.curvature;
+    island.scale = linear < 0 && work.curvature > 0
+                       ? std::clamp<Real>(-linear / work.curvature, 0, 1)
+                       : 0;
   }
 
   // The impulses, back in the caller's places.
