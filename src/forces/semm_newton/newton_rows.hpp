@@ -22,8 +22,9 @@
 // R is a fraction of the row's own Delassus diagonal w = J W J^T: kNormalRegularisation for the
 // normal rows and kFrictionRegularisation for the others while Newton finds the regularised
 // answer (soft enough that the active set of a pour's island settles in a few iterations;
-// MuJoCo's default impedance gives R = 0.11 w), kExactRegularisation for friction in the polish
-// (a millionth: the creep it leaves is far below anything a test or a user could see).
+// MuJoCo's default impedance gives R = 0.11 w), kRestingFrictionRegularisation for the friction
+// of an island at rest (semm_newton.cpp, at_rest), kExactRegularisation for friction in the
+// polish (a millionth: the creep it leaves is far below anything a test or a user could see).
 #pragma once
 
 #include <Eigen/Dense>
@@ -42,6 +43,14 @@ using Jacobian = Eigen::Matrix<Real, 2, 6>;  // rows beyond the row's dimension 
 
 inline constexpr Real kNormalRegularisation = 1e-3;
 inline constexpr Real kFrictionRegularisation = 1e-1;
+// Why a hundredth for an island at rest: at a tenth, the settled 1,000-coin pile's polish failed
+// in every step, and the regularised answer left 700-850 of its 2,940 slip rows sliding on their
+// limits; the pile sank into overlap, the overlap correction lifted it in every step and it never
+// came to rest. At a hundredth the pile rests within 0.11 s of its restart and sleeps (at rest,
+// the polish converges in 98 of 100 steps); at 1e-3, 1e-4 and 1e-6 the pile's islands (and at
+// 1e-3 the 100-coin pours') began to spend the iteration budget (docs/benchmarks.md, "The energy
+// rule of friction, per island, and friction of an island at rest").
+inline constexpr Real kRestingFrictionRegularisation = 1e-2;
 inline constexpr Real kExactRegularisation = 1e-6;
 
 struct Row {

@@ -110,9 +110,9 @@ struct RowBuilder {
           linear.dot(bodies[body].velocity) + angular.dot(bodies[body].angular_velocity);
     }
   }
-  // R: a fraction of the row's Delassus diagonal w (the mean over its components),
-  // newton_rows.hpp.
-  void regularise(Row& row, const std::vector<int>& island_bodies) const {
+  // R: a fraction of the row's Delassus diagonal w (the mean over its components), `friction`
+  // for the friction, twist and rolling rows (newton_rows.hpp).
+  void regularise(Row& row, const std::vector<int>& island_bodies, Real friction) const {
     Real w = 0;
     for (int s = 0; s < 2; ++s) {
       if (row.side[s] < 0) continue;
@@ -124,11 +124,23 @@ struct RowBuilder {
       }
     }
     row.delassus = std::max<Real>(w / row.dim, 1e-300);
-    row.regularisation = (row.kind == Row::Kind::normal ? newton::kNormalRegularisation
-                                                        : newton::kFrictionRegularisation) *
-                         row.delassus;
+    row.regularisation =
+        (row.kind == Row::Kind::normal ? newton::kNormalRegularisation : friction) * row.delassus;
   }
 };
+
+// An island at rest: none of its bodies starts the step faster than one step of its free motion
+// changes its velocity (g dt under gravity alone). Its contacts hold as they did, so friction
+// near Coulomb's converges in a few Newton iterations there, and soft friction would only let
+// the island creep (newton_rows.hpp, kRestingFrictionRegularisation). A pour's islands, with
+// bodies landing or sliding, keep the soft friction that lets their active set settle.
+bool at_rest(const Island& island, const std::vector<BodyResponse>& bodies) {
+  for (const int b : island.bodies) {
+    const BodyResponse& body = bodies[b];
+    if (body.start_velocity.norm() > (body.velocity - body.start_velocity).norm()) return false;
+  }
+  return true;
+}
 
 void build_island(const std::vector<ContactPoint>& points, const std::vector<Real>& start,
                   const std::vector<Real>& targets,
@@ -222,8 +234,10 @@ void build_island(const std::vector<ContactPoint>& points, const std::vector<Rea
     problem.patch_rows.push_back(pr);
   }
   // Regularisation, and the Hessian's off-diagonal blocks: one per pair of unknowns a row joins.
+  const Real friction = at_rest(island, bodies) ? newton::kRestingFrictionRegularisation
+                                                : newton::kFrictionRegularisation;
   for (Row& row : island.rows) {
-    builder.regularise(row, island.bodies);
+    builder.regularise(row, island.bodies, friction);
     if (row.side[0] >= 0 && row.side[1] >= 0)
       problem.pairs.emplace_back(std::max(row.side[0], row.side[1]),
                                  std::min(row.side[0], row.side[1]));
@@ -475,15 +489,16 @@ bool newton_iterations(Island& island, const std::vector<BodyResponse>& bodies,
 }
 
 // The work the impulses of `s` do over the step: each row's gamma . (u_start + u_after) / 2,
-// u_after what the impulses read off the rows give the bodies (y, to the tolerance); and its
-// part quadratic in the impulses, gamma . (u_after - u_free) / 2 (`curvature`).
+// u_after what the impulses read off the rows give the bodies (y, to the tolerance); that of the
+// friction, twist and rolling rows alone; and its part quadratic in the impulses,
+// gamma . (u_after - u_free) / 2 (`curvature`).
 struct StepWork {
-  Real added = 0, curvature = 0;
-  // Round-off: the velocities after the step carry that of their change, so the work carries
-  // some epsilon of the curvature; a body held exactly at rest (the polish lands there) would
-  // otherwise add energy in most steps.
-  bool adds_energy() const {
-    return added > 64 * std::numeric_limits<Real>::epsilon() * std::abs(curvature);
+  Real added = 0, by_friction = 0, curvature = 0;
+  // Beyond round-off: the velocities after the step carry that of their change, so the work
+  // carries some epsilon of the curvature; a body held exactly at rest (the polish lands there)
+  // would otherwise add energy in most steps.
+  bool beyond_round_off(Real work) const {
+    return work > 64 * std::numeric_limits<Real>::epsilon() * std::abs(curvature);
   }
 };
 
@@ -501,25 +516,32 @@ StepWork step_work(const Island& island, const std::vector<BodyResponse>& bodies
     if (gamma.isZero(0)) continue;
     // u without the mirrored start: the row's real velocity.
     const Vec2 shift = row.mirrored ? row.start : Vec2::Zero();
-    work.added += gamma.dot(row.start + given.u[r] - shift) / 2;
+    const Real done = gamma.dot(row.start + given.u[r] - shift) / 2;
+    work.added += done;
+    if (row.kind != Row::Kind::normal) work.by_friction += done;
     work.curvature += gamma.dot(given.u[r] - free_motion.u[r]) / 2;
   }
   return work;
 }
 
-// The energy rule of friction, applied to the island: should its impulses add energy over the
-// step, each friction, twist or rolling row whose impulse pushes along the slip the step started
-// with (the work gamma . (u_start + u_after) / 2 > 0) asks from now on for its start velocity
-// mirrored (u_after = -u_start, no work) instead of none. Returns whether a row was mirrored.
-// Why not row by row, as the row solver (semm.cpp, friction_block): the regularised friction
-// leaves a resting row the creep R (c - gamma), and a row whose impulse pushes along last step's
-// creep was mirrored: some 800 of the settled 1,000-coin pile's 2,940 slip rows in every step,
-// while the island as a whole took energy out. Each mirror cost the island another pass (a
-// resting column took four iterations a step instead of one) and kept the row's creep, reversed,
-// instead of ending it (docs/benchmarks.md, "The energy rule of friction, per island").
+// The energy rule of friction, applied to the island's friction rows together: should their
+// impulses add energy over the step, each friction, twist or rolling row whose impulse pushes
+// along the slip the step started with (the work gamma . (u_start + u_after) / 2 > 0) asks from
+// now on for its start velocity mirrored (u_after = -u_start, no work) instead of none. Returns
+// whether a row was mirrored. Why not row by row, as the row solver (semm.cpp, friction_block):
+// the regularised friction leaves a resting row the creep R (c - gamma), and a row whose impulse
+// pushes along last step's creep was mirrored: some 800 of the settled 1,000-coin pile's 2,940
+// slip rows in every step, while its friction as a whole took energy out. Each mirror cost the
+// island another pass (a resting column took four iterations a step instead of one) and kept
+// the row's creep, reversed, instead of ending it. Why not the whole island's work: on a pile at
+// rest its normal rows' regularisation error does some 2e-10 erg, which no mirror of friction
+// removes; gated on it, 1,300-1,500 rows were mirrored in every step at rest, seven iterations a
+// step instead of three (docs/benchmarks.md, "The energy rule of friction, per island, and
+// friction of an island at rest").
 bool mirror_rows(Island& island, const std::vector<BodyResponse>& bodies,
                  const IslandProblem& problem, const NewtonState& s) {
-  if (!step_work(island, bodies, problem, s).adds_energy()) return false;
+  const StepWork work = step_work(island, bodies, problem, s);
+  if (!work.beyond_round_off(work.by_friction)) return false;
   std::vector<Row>& rows = island.rows;
   bool mirrored = false;
   for (size_t r = 0; r < rows.size(); ++r) {
@@ -655,7 +677,7 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
   // curvature, B its part linear in the impulses).
   const StepWork work = step_work(island, bodies, problem, s);
   island.scale = 1;
-  if (work.adds_energy()) {
+  if (work.beyond_round_off(work.added)) {
     const Real linear = work.added - work.curvature;
     island.scale = linear < 0 && work.curvature > 0
                        ? std::clamp<Real>(-linear / work.curvature, 0, 1)

@@ -16,9 +16,10 @@
 // threads, each on one thread: the same bits at any thread count.
 //
 // Two stages per island (semm_newton.cpp, solve_island):
-// - the regularised answer: soft rows (R 1e-3 w normal, 1e-1 w friction), friction limits from
-//   the last step's normal impulses and then once from the answer's; a pour's islands converge
-//   in a few iterations where stiff rows stalled (docs/benchmarks.md);
+// - the regularised answer: soft rows (R 1e-3 w normal, 1e-1 w friction, 1e-2 w friction in an
+//   island at rest), friction limits from the last step's normal impulses and then once from the
+//   answer's; a pour's islands converge in a few iterations where stiff rows stalled
+//   (docs/benchmarks.md);
 // - the polish: each friction row held in the stick or slip the regularised answer found, R
 //   1e-6 w, solved again; rows held in stick beyond their limit are let go. Converged, friction
 //   is exact Coulomb within the limits set (no lift of a sliding body, no creep at the friction
