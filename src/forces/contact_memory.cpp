@@ -5,13 +5,8 @@
 namespace tem {
 
 void renumber_records(const std::vector<int>& map, std::vector<MemoryRecord>& records) {
-  std::erase_if(records, [&](const MemoryRecord& r) {
-    return map[r.body_a] < 0 || (r.body_b >= 0 && map[r.body_b] < 0);
-  });
-  for (MemoryRecord& r : records) {
-    r.body_a = map[r.body_a];
-    if (r.body_b >= 0) r.body_b = map[r.body_b];
-  }
+  std::erase_if(records, [&](const MemoryRecord& r) { return pair_gone(map, r.body_a, r.body_b); });
+  for (MemoryRecord& r : records) renumber_pair(map, r.body_a, r.body_b);
 }
 
 }  // namespace tem

@@ -20,8 +20,18 @@ struct MemoryRecord {
   std::vector<double> values;  // the model's, read back by it alone
 };
 
-// Drops the records that touch a body gone (map: old body -> new, -1 for gone) and renumbers
-// the rest. The map keeps the bodies' order, so the records keep the order of pair_key.
+// After bodies leave (map: old body -> new, -1 for gone): whether a pair of body a and body b
+// (b < 0: a wall) touched a body gone, and the pair's new numbers.
+inline bool pair_gone(const std::vector<int>& map, int a, int b) {
+  return map[a] < 0 || (b >= 0 && map[b] < 0);
+}
+inline void renumber_pair(const std::vector<int>& map, int& a, int& b) {
+  a = map[a];
+  if (b >= 0) b = map[b];
+}
+
+// Drops the records that touch a body gone and renumbers the rest. The map keeps the bodies'
+// order, so the records keep the order of pair_key.
 void renumber_records(const std::vector<int>& map, std::vector<MemoryRecord>& records);
 
 // Writing a model's numbers into a record and reading them back: integers as doubles (exact

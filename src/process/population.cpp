@@ -64,11 +64,8 @@ bool room_for(const Model& model, const State& state, const std::vector<Real>& s
 // warm start and the penalty springs rely on.
 void renumber_memory(const Model& model, const std::vector<int>& map,
                      const PopulationLinks& links) {
-  auto gone = [&](int a, int b) { return map[a] < 0 || (b >= 0 && map[b] < 0); };
-  auto renumber = [&](int& a, int& b) {
-    a = map[a];
-    if (b >= 0) b = map[b];
-  };
+  auto gone = [&](int a, int b) { return pair_gone(map, a, b); };
+  auto renumber = [&](int& a, int& b) { renumber_pair(map, a, b); };
   std::vector<int> patch_map;
   if (links.patches) {
     std::vector<ContactPatch>& patches = *links.patches;
