@@ -64,20 +64,15 @@ bool room_for(const Model& model, const State& state, const std::vector<Real>& s
 // warm start and the penalty springs rely on.
 void renumber_memory(const Model& model, const std::vector<int>& map,
                      const PopulationLinks& links) {
-  auto gone = [&](int a, int b) { return pair_gone(map, a, b); };
-  auto renumber = [&](int& a, int& b) { renumber_pair(map, a, b); };
-  std::vector<int> patch_map;
   if (links.patches) {
     std::vector<ContactPatch>& patches = *links.patches;
     std::vector<PatchForce>* forces = links.forces ? &links.forces->patch_forces : nullptr;
     const bool parallel = forces && forces->size() == patches.size();
-    patch_map.assign(patches.size(), -1);
     size_t next = 0;
     for (size_t k = 0; k < patches.size(); ++k) {
-      if (gone(patches[k].body_a, patches[k].body_b)) continue;
-      patch_map[k] = static_cast<int>(next);
+      if (pair_gone(map, patches[k].body_a, patches[k].body_b)) continue;
       patches[next] = patches[k];
-      renumber(patches[next].body_a, patches[next].body_b);
+      renumber_pair(map, patches[next].body_a, patches[next].body_b);
       if (parallel) (*forces)[next] = (*forces)[k];
       ++next;
     }
@@ -86,8 +81,8 @@ void renumber_memory(const Model& model, const std::vector<int>& map,
   }
   if (links.features) {
     std::erase_if(*links.features,
-                  [&](const CachedFeatures& e) { return gone(e.body_a, e.body_b); });
-    for (CachedFeatures& e : *links.features) renumber(e.body_a, e.body_b);
+                  [&](const CachedFeatures& e) { return pair_gone(map, e.body_a, e.body_b); });
+    for (CachedFeatures& e : *links.features) renumber_pair(map, e.body_a, e.body_b);
   }
   if (!links.forces) return;
   // The force model's memory (force_model.hpp): its records of the bodies gone dropped, the
