@@ -255,6 +255,14 @@ void build_island(const std::vector<ContactPoint>& points, const std::vector<Rea
   island.factor.set_pattern(static_cast<int>(nb), problem.pairs);
 }
 
+// J dy: the change of a row's velocity that a change dy of the bodies' velocities makes.
+Vec2 row_change(const Row& row, const Vector& dy) {
+  Vec2 du = Vec2::Zero();
+  for (int s = 0; s < 2; ++s)
+    if (row.side[s] >= 0) du += row.jacobian[s] * dy.segment<6>(6 * row.side[s]);
+  return du;
+}
+
 Vec2 row_velocity(const Row& row, const Vector& y) {
   Vec2 u = row.constant;
   for (int s = 0; s < 2; ++s)
@@ -378,12 +386,7 @@ Real line_search(const Island& island, const IslandProblem& problem, NewtonState
     metric_step += m_step.dot(s.step.segment<6>(at));
   }
   s.du.resize(island.rows.size());
-  for (size_t r = 0; r < island.rows.size(); ++r) {
-    const Row& row = island.rows[r];
-    s.du[r].setZero();
-    for (int side = 0; side < 2; ++side)
-      if (row.side[side] >= 0) s.du[r] += row.jacobian[side] * s.step.segment<6>(6 * row.side[side]);
-  }
+  for (size_t r = 0; r < island.rows.size(); ++r) s.du[r] = row_change(island.rows[r], s.step);
   const Real slope0 = slope_at(island, s, base, metric_step, 0).first;
   if (!(slope0 < 0)) return 0;  // no descent left (round-off)
   // Where the slope is still falling at 1 (the Hessian overestimated a row's curvature), the
@@ -504,11 +507,9 @@ struct StepWork {
 
 StepWork step_work(const Island& island, const std::vector<BodyResponse>& bodies,
                    const IslandProblem& problem, const NewtonState& s) {
-  NewtonState given, free_motion;
-  given.y = problem.free + mobility_times(island, bodies, problem, s);
-  evaluate(island, problem, given, -1, false);
-  free_motion.y = problem.free;
-  evaluate(island, problem, free_motion, -1, false);
+  // The impulses' change of the bodies' velocities, and the rows' velocities it gives.
+  const Vector change = mobility_times(island, bodies, problem, s);
+  const Vector given = problem.free + change;
   StepWork work;
   for (size_t r = 0; r < island.rows.size(); ++r) {
     const Row& row = island.rows[r];
@@ -516,10 +517,10 @@ StepWork step_work(const Island& island, const std::vector<BodyResponse>& bodies
     if (gamma.isZero(0)) continue;
     // u without the mirrored start: the row's real velocity.
     const Vec2 shift = row.mirrored ? row.start : Vec2::Zero();
-    const Real done = gamma.dot(row.start + given.u[r] - shift) / 2;
+    const Real done = gamma.dot(row.start + row_velocity(row, given) - shift) / 2;
     work.added += done;
     if (row.kind != Row::Kind::normal) work.by_friction += done;
-    work.curvature += gamma.dot(given.u[r] - free_motion.u[r]) / 2;
+    work.curvature += gamma.dot(row_change(row, change)) / 2;
   }
   return work;
 }
