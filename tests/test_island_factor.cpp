@@ -3,7 +3,8 @@
 // semidefinite, -C between the two bodies), symmetric positive definite. A lattice of bodies
 // (a pile's pattern: its factor fills in) takes CHOLMOD's supernodal factorisation, a chain
 // (a column's: no fill) Eigen's; both solve H x = b to round-off, agree with a dense Cholesky,
-// and give the same bits at one and two OpenMP threads (the BLAS held to one).
+// and give the same bits at one and two OpenMP threads (the BLAS held to one). Pairs whose block
+// is 0 (contacts that do not push) are left out of the factor's pattern.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -31,8 +32,10 @@ struct Hessian {
   Eigen::MatrixXd dense;  // the same matrix, whole
 };
 
-// Bodies at the points of an nx x ny x nz lattice, each coupled to its six neighbours.
-Hessian lattice(int nx, int ny, int nz, unsigned seed) {
+// Bodies at the points of an nx x ny x nz lattice, each coupled to its six neighbours. With
+// `pushing` < 1, each pair is coupled with that probability, and otherwise is a pair whose rows
+// are all apart (a contact within the margin that does not push): in the pattern, its block 0.
+Hessian lattice(int nx, int ny, int nz, unsigned seed, Real pushing = 1) {
   std::mt19937 random(seed);
   std::uniform_real_distribution<Real> uniform(-1, 1);
   auto random_block = [&] {
@@ -56,6 +59,10 @@ Hessian lattice(int nx, int ny, int nz, unsigned seed) {
   h.diagonal.assign(h.bodies, Mat6::Identity());  // the mass matrix, here of unit masses
   h.dense = Eigen::MatrixXd::Identity(6 * h.bodies, 6 * h.bodies);
   for (const auto& [i, j] : h.pairs) {
+    if (pushing < 1 && (uniform(random) + 1) / 2 >= pushing) {
+      h.off_diagonal.push_back(Mat6::Zero());
+      continue;
+    }
     const Mat6 a = random_block();
     const Mat6 c = 1e3 * a * a.transpose();  // stiff as a regularised contact, beside the mass
     h.diagonal[i] += c;
@@ -147,6 +154,41 @@ TEST(IslandFactor, KeptAnalysisGivesTheBitsOfAFreshOne) {
     EXPECT_EQ(kept.supernodal(), supernodal) << k;
     for (Eigen::Index i = 0; i < x.size(); ++i) ASSERT_EQ(x(i), fresh(i)) << k << " " << i;
   }
+}
+
+// A pair whose block is 0 (its rows all apart) is left out of the factor's pattern: a lattice in
+// which a sixth of the pairs push falls apart into clusters whose factor barely fills in, and so
+// takes Eigen's simplicial factorisation where the whole lattice takes CHOLMOD's supernodal one;
+// it solves H x = b as the dense Cholesky does. Within a step (no set_pattern between) a pair
+// that starts to push joins the pattern, which is analysed afresh and gives the bits of a factor
+// made for that matrix alone; it stays while the step lasts; the next step starts again from the
+// pairs that push in it.
+TEST(IslandFactor, PairsThatDoNotPushAreLeftOutOfThePattern) {
+  const Hessian loose = lattice(7, 7, 7, 11, 1.0 / 6);
+  expect_solved(loose, false);
+  const Hessian tight = lattice(7, 7, 7, 12);  // the same contact graph, every pair pushing
+  ASSERT_EQ(loose.pairs, tight.pairs);
+  IslandFactor kept;
+  auto factorise = [&](const Hessian& h, int analyses, bool supernodal) {
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(6 * h.bodies, -1, 2);
+    Eigen::VectorXd x;
+    ASSERT_TRUE(kept.factorise(h.diagonal, h.off_diagonal));
+    kept.solve(b, x);
+    EXPECT_EQ(kept.analyses(), analyses);
+    EXPECT_EQ(kept.supernodal(), supernodal);
+    const Eigen::VectorXd dense = h.dense.llt().solve(b);
+    EXPECT_LT((x - dense).norm() / dense.norm(), 1e-9);
+    bool fresh_supernodal = false;
+    const Eigen::VectorXd fresh = solve_at(h, b, 1, fresh_supernodal);
+    if (fresh_supernodal == supernodal)
+      for (Eigen::Index i = 0; i < x.size(); ++i) ASSERT_EQ(x(i), fresh(i)) << i;
+  };
+  kept.set_pattern(loose.bodies, loose.pairs);
+  factorise(loose, 1, false);
+  factorise(tight, 2, true);   // every pair joins: analysed afresh
+  factorise(loose, 2, true);   // the same step: the pairs stay
+  kept.set_pattern(loose.bodies, loose.pairs);  // the next step
+  factorise(loose, 3, false);
 }
 
 }  // namespace test_island_factor

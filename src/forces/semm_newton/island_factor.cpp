@@ -44,13 +44,20 @@ IslandFactor& IslandFactor::operator=(IslandFactor&&) noexcept = default;
 IslandFactor::~IslandFactor() = default;
 
 void IslandFactor::set_pattern(int bodies, const std::vector<std::pair<int, int>>& pairs) {
-  // The same pattern as the last step's (a resting island's contact graph): its analysis and
-  // choice of factorisation stand.
-  if (analysed_ && bodies == bodies_ && pairs == pairs_) return;
+  live_.assign(pairs.size(), 0);
+  // The same contact graph as the last step's (a resting island's): its analysis and choice of
+  // factorisation stand while the same pairs push.
+  if (bodies == bodies_ && pairs == pairs_) return;
   bodies_ = bodies;
   pairs_ = pairs;
   kind_ = bodies <= kDenseBodies ? Kind::dense : Kind::simplicial;
   analysed_ = false;
+}
+
+void IslandFactor::mark_live(const std::vector<Mat6>& off_diagonal) {
+  for (size_t k = 0; k < pairs_.size(); ++k)
+    if (!live_[k] && !off_diagonal[k].isZero(0)) live_[k] = 1;
+  if (live_ != analysed_live_) analysed_ = false;
 }
 
 bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
@@ -67,11 +74,12 @@ bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
     dense_factor_.compute(dense_matrix_);
     return dense_factor_.info() == Eigen::Success;
   }
-  // Upper triangle: the diagonal blocks' upper halves and every pair's block (i > j)
+  // Upper triangle: the diagonal blocks' upper halves and every live pair's block (i > j)
   // transposed, at block row j and block column i. Explicit zeros are kept, so that the
   // pattern, and with it the symbolic analysis, stays the same. The matrix is built from
   // triplets once per pattern, which also finds where each entry lands in its storage; later
   // factorisations write the values there (the same values in the same places: the same bits).
+  mark_live(off_diagonal);
   const bool built = analysed_;
   size_t next = 0;
   std::vector<Eigen::Triplet<Real>> triplets;  // a new pattern's entries, until it is built
@@ -84,6 +92,7 @@ bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
     for (int c = 0; c < 6; ++c)
       for (int r = c; r < 6; ++r) entry(6 * b + c, 6 * b + r, diagonal[b](r, c));
   for (size_t k = 0; k < pairs_.size(); ++k) {
+    if (!live_[k]) continue;
     const auto [i, j] = pairs_[k];
     for (int c = 0; c < 6; ++c)
       for (int r = 0; r < 6; ++r) entry(6 * j + c, 6 * i + r, off_diagonal[k](r, c));
@@ -102,7 +111,9 @@ bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
   }
   if (!analysed_) {
     analysed_ = true;
+    analysed_live_ = live_;
     ++analyses_;
+    kind_ = Kind::simplicial;
     if (!simplicial_factor_) simplicial_factor_ = std::make_unique<SimplicialFactor>();
     simplicial_factor_->analyzePattern(sparse_matrix_);
     if (simplicial_factor_->flops_per_entry() >= kSupernodalFlopsPerEntry) {

@@ -17,13 +17,21 @@
 //     island solve"): the rule takes 9 % off the factorisations of a 1,000-coin pour's crash
 //     against the one before it (40 entries a column on average), within 1 % of choosing the
 //     faster for each matrix, and leaves 100-coin pours and columns as they were.
+// The factor's pattern holds only the pairs whose block has been non-zero in this step's
+// iterations: a pair whose rows are all apart (found within the contact margin, not pushing)
+// adds nothing to H, and left out, a pour's island falls apart into the clusters that push on
+// each other. In a 1,000-coin pour's crash a third of the pairs push and the largest cluster
+// holds a third to a half of the island's bodies; the crash's first 0.06 s takes 40 % less time
+// than with every pair in the pattern (docs/benchmarks.md, "The factor's pattern: only the pairs
+// that push"). A pair once seen pushing stays for the step, so that the pattern holds while the
+// active set settles.
 // Eigen's symbolic analysis, which counts the entries of the factor's columns, is made once per
-// pattern and decides; the analysis of the chosen factorisation is reused by every iteration of
-// the step (the pattern holds every row, pushing or not) and by the next steps while the island's
-// pattern stays the same (its contact graph unchanged: 16 of 41 steps on the settled
-// 1,000-coin pile, none in a pour's crash). The choice depends only on the pattern, so it is
-// the same at any thread count and across a resume; so that the BLAS gives the same bits too, it
-// is held to one thread (island_factor.cpp). Measured beside these: conjugate gradients
+// pattern and decides; the analysis of the chosen factorisation is reused by every iteration
+// while no pair joins the pattern, and by the next steps while the island's contact graph and
+// the pairs that push stay the same (a resting island). The pattern depends only on the step's
+// own iterates, so it and the choice are the same at any thread count and across a resume (a
+// resumed run's fresh factor makes the same); so that the BLAS gives the same bits too, it is
+// held to one thread (island_factor.cpp). Measured beside these: conjugate gradients
 // preconditioned by the bodies' blocks are faster on a resting pile but slower in a pour's crash,
 // and preconditioned by the step's earlier factor slower everywhere (docs/benchmarks.md).
 #pragma once
@@ -52,7 +60,8 @@ class IslandFactor {
   IslandFactor& operator=(IslandFactor&&) noexcept;
   ~IslandFactor();
 
-  // The island's pattern: `bodies` block rows, and the pairs (i > j) of bodies that share a row.
+  // The island's contact graph: `bodies` block rows, and the pairs (i > j) of bodies that share
+  // a row.
   void set_pattern(int bodies, const std::vector<std::pair<int, int>>& pairs);
   // Blocks of H: the diagonal ones, one per body, and one per pair in set_pattern's order.
   // Returns false if H is not positive definite (it always is in exact arithmetic: M is).
@@ -67,6 +76,14 @@ class IslandFactor {
  private:
   int bodies_ = 0;
   std::vector<std::pair<int, int>> pairs_;
+  // Per pair: whether its block has been non-zero in a factorisation since the last
+  // set_pattern (this step's iterations); only those pairs are in the factor's pattern, which
+  // so depends on this step alone (a resumed run's fresh factor has the same), and those of
+  // the pattern the analysis was made for.
+  std::vector<char> live_, analysed_live_;
+  // Marks the pairs whose block is non-zero now; a pattern other than the analysed one is
+  // analysed afresh.
+  void mark_live(const std::vector<Mat6>& off_diagonal);
   enum class Kind { dense, simplicial, supernodal };
   Kind kind_ = Kind::dense;
   bool analysed_ = false;
