@@ -1,6 +1,7 @@
 #include "forces/semm_newton/island_factor.hpp"
 
 #include <Eigen/CholmodSupport>
+#include <Eigen/OrderingMethods>
 #include <algorithm>
 #include <mutex>
 
@@ -9,8 +10,12 @@
 
 namespace tem::newton {
 
+// Given the matrix in the order order_bodies() chose, with no ordering of its own: Eigen's
+// would order the six times larger graph of the unknowns, and permute the matrix again in every
+// factorisation.
 struct IslandFactor::SimplicialFactor
-    : Eigen::SimplicialLDLT<Eigen::SparseMatrix<Real>, Eigen::Upper> {
+    : Eigen::SimplicialLDLT<Eigen::SparseMatrix<Real>, Eigen::Upper,
+                            Eigen::NaturalOrdering<int>> {
   // The factorisation's flops per entry of L, from the entries below the diagonal of each of
   // L's columns that the symbolic analysis counts (SimplicialCholeskyBase::analyzePattern): a
   // column of c entries costs some c^2 flops. CHOLMOD chooses between its own simplicial and
@@ -60,6 +65,20 @@ void IslandFactor::mark_live(const std::vector<Mat6>& off_diagonal) {
   if (live_ != analysed_live_) analysed_ = false;
 }
 
+void IslandFactor::order_bodies() {
+  Eigen::SparseMatrix<Real> graph(bodies_, bodies_);
+  std::vector<Eigen::Triplet<Real>> edges;
+  edges.reserve(static_cast<size_t>(bodies_) + pairs_.size());
+  for (int b = 0; b < bodies_; ++b) edges.emplace_back(b, b, 1);
+  for (size_t k = 0; k < pairs_.size(); ++k)
+    if (live_[k]) edges.emplace_back(pairs_[k].second, pairs_[k].first, 1);
+  graph.setFromTriplets(edges.begin(), edges.end());
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order;
+  Eigen::AMDOrdering<int>()(graph, order);  // order.indices()[k]: the body in place k
+  position_.resize(static_cast<size_t>(bodies_));
+  for (int k = 0; k < bodies_; ++k) position_[order.indices()[k]] = k;
+}
+
 bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
                              const std::vector<Mat6>& off_diagonal) {
   const int n = 6 * bodies_;
@@ -74,13 +93,15 @@ bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
     dense_factor_.compute(dense_matrix_);
     return dense_factor_.info() == Eigen::Success;
   }
-  // Upper triangle: the diagonal blocks' upper halves and every live pair's block (i > j)
-  // transposed, at block row j and block column i. Explicit zeros are kept, so that the
-  // pattern, and with it the symbolic analysis, stays the same. The matrix is built from
-  // triplets once per pattern, which also finds where each entry lands in its storage; later
-  // factorisations write the values there (the same values in the same places: the same bits).
+  // Upper triangle, with body b's unknowns at 6 position_[b]: the diagonal blocks' upper halves
+  // and every live pair's block, at block row min(position) and block column max(position).
+  // Explicit zeros are kept, so that the pattern, and with it the symbolic analysis, stays the
+  // same. The matrix is built from triplets once per pattern, which also finds where each entry
+  // lands in its storage; later factorisations write the values there (the same values in the
+  // same places: the same bits).
   mark_live(off_diagonal);
   const bool built = analysed_;
+  if (!built) order_bodies();
   size_t next = 0;
   std::vector<Eigen::Triplet<Real>> triplets;  // a new pattern's entries, until it is built
   auto entry = [&](int r, int c, Real value) {
@@ -88,14 +109,20 @@ bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
     else triplets.emplace_back(r, c, value);
   };
   if (!built) triplets.reserve(static_cast<size_t>(21 * bodies_) + 36 * pairs_.size());
-  for (int b = 0; b < bodies_; ++b)
+  for (int b = 0; b < bodies_; ++b) {
+    const int at = 6 * position_[b];
     for (int c = 0; c < 6; ++c)
-      for (int r = c; r < 6; ++r) entry(6 * b + c, 6 * b + r, diagonal[b](r, c));
+      for (int r = c; r < 6; ++r) entry(at + c, at + r, diagonal[b](r, c));
+  }
   for (size_t k = 0; k < pairs_.size(); ++k) {
     if (!live_[k]) continue;
-    const auto [i, j] = pairs_[k];
+    // The block (i, j) is off_diagonal[k]; its transpose is (j, i).
+    const int i = 6 * position_[pairs_[k].first], j = 6 * position_[pairs_[k].second];
     for (int c = 0; c < 6; ++c)
-      for (int r = 0; r < 6; ++r) entry(6 * j + c, 6 * i + r, off_diagonal[k](r, c));
+      for (int r = 0; r < 6; ++r) {
+        if (i < j) entry(i + r, j + c, off_diagonal[k](r, c));
+        else entry(j + c, i + r, off_diagonal[k](r, c));
+      }
   }
   if (!built) {
     sparse_matrix_.resize(n, n);
@@ -134,11 +161,16 @@ bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
 }
 
 void IslandFactor::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
-  switch (kind_) {
-    case Kind::dense: x = dense_factor_.solve(b); break;
-    case Kind::simplicial: x = simplicial_factor_->solve(b); break;
-    case Kind::supernodal: serially([&] { x = supernodal_factor_->solve(b); }); break;
+  if (kind_ == Kind::dense) {
+    x = dense_factor_.solve(b);
+    return;
   }
+  Eigen::VectorXd ordered(b.size()), answer;
+  for (int k = 0; k < bodies_; ++k) ordered.segment<6>(6 * position_[k]) = b.segment<6>(6 * k);
+  if (kind_ == Kind::simplicial) answer = simplicial_factor_->solve(ordered);
+  else serially([&] { answer = supernodal_factor_->solve(ordered); });
+  x.resize(b.size());
+  for (int k = 0; k < bodies_; ++k) x.segment<6>(6 * k) = answer.segment<6>(6 * position_[k]);
 }
 
 }  // namespace tem::newton

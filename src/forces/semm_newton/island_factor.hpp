@@ -6,8 +6,8 @@
 // one iteration, whatever the height of the pile (a Gauss-Seidel sweep carries it one layer).
 // Three factorisations, by the island's size and shape:
 //   - at most kDenseBodies bodies (a grain on the floor, a few touching): a dense Cholesky;
-//   - larger: Eigen's sparse Cholesky (SimplicialLDLT, approximate minimum degree ordering),
-//     column by column, where the factor is sparse: chains and the loose clusters of a pour;
+//   - larger: Eigen's sparse Cholesky (SimplicialLDLT), column by column, where the factor is
+//     sparse: chains and the loose clusters of a pour;
 //   - CHOLMOD's supernodal Cholesky (SuiteSparse) where the factorisation takes at least
 //     kSupernodalFlopsPerEntry flops per entry of the factor (a column of c entries below the
 //     diagonal costs c^2): a pile, whose separators are dense blocks of hundreds of unknowns,
@@ -25,8 +25,12 @@
 // than with every pair in the pattern (docs/benchmarks.md, "The factor's pattern: only the pairs
 // that push"). A pair once seen pushing stays for the step, so that the pattern holds while the
 // active set settles.
-// Eigen's symbolic analysis, which counts the entries of the factor's columns, is made once per
-// pattern and decides; the analysis of the chosen factorisation is reused by every iteration
+// Both sparse factorisations take the matrix in an order of the bodies chosen by approximate
+// minimum degree on the graph of the bodies and their live pairs (order_bodies): Eigen's own
+// ordering of the 6 N unknowns, and its permutation of the matrix in every factorisation, took
+// 7-12 % more time in pours (docs/benchmarks.md, "The factor's pattern: only the pairs that
+// push"). Eigen's symbolic analysis, which counts the entries of the factor's columns, is made
+// once per pattern and decides; the analysis of the chosen factorisation is reused by every iteration
 // while no pair joins the pattern, and by the next steps while the island's contact graph and
 // the pairs that push stay the same (a resting island). The pattern depends only on the step's
 // own iterates, so it and the choice are the same at any thread count and across a resume (a
@@ -92,6 +96,11 @@ class IslandFactor {
   Eigen::LLT<Eigen::MatrixXd> dense_factor_;
   Eigen::SparseMatrix<Real> sparse_matrix_;  // upper triangle, compressed
   std::vector<Eigen::Index> value_index_;    // where each entry lands in its values
+  // The factor's order of the bodies: body b's unknowns are rows 6 position_[b] to +5. Chosen
+  // by approximate minimum degree on the graph of the bodies and their live pairs, once per
+  // pattern.
+  std::vector<int> position_;
+  void order_bodies();
   struct SimplicialFactor;  // Eigen's, with the count of its factor's entries
   struct SupernodalFactor;  // CHOLMOD's, defined where its header is included: the .cpp
   std::unique_ptr<SimplicialFactor> simplicial_factor_;
