@@ -30,12 +30,12 @@
 // ordering of the 6 N unknowns, and its permutation of the matrix in every factorisation, took
 // 7-12 % more time in pours (docs/benchmarks.md, "The factor's pattern: only the pairs that
 // push"). Eigen's symbolic analysis, which counts the entries of the factor's columns, is made
-// once per pattern and decides; the analysis of the chosen factorisation is reused by every iteration
-// while no pair joins the pattern, and by the next steps while the island's contact graph and
-// the pairs that push stay the same (a resting island). The pattern depends only on the step's
-// own iterates, so it and the choice are the same at any thread count and across a resume (a
-// resumed run's fresh factor makes the same); so that the BLAS gives the same bits too, it is
-// held to one thread (island_factor.cpp). Measured beside these: conjugate gradients
+// once per pattern and decides; the analysis of the chosen factorisation is reused by every
+// iteration while no pair joins the pattern, and by the next steps while the island's contact
+// graph and the pairs that push stay the same (a resting island). The pattern depends only on
+// the step's own iterates, so it and the choice are the same at any thread count and across a
+// resume (a resumed run's fresh factor makes the same); so that the BLAS gives the same bits
+// too, it is held to one thread (island_factor.cpp). Measured beside these: conjugate gradients
 // preconditioned by the bodies' blocks are faster on a resting pile but slower in a pour's crash,
 // and preconditioned by the step's earlier factor slower everywhere (docs/benchmarks.md).
 #pragma once
