@@ -180,8 +180,9 @@ TEST(IslandFactor, PairsThatDoNotPushAreLeftOutOfThePattern) {
     EXPECT_LT((x - dense).norm() / dense.norm(), 1e-9);
     bool fresh_supernodal = false;
     const Eigen::VectorXd fresh = solve_at(h, b, 1, fresh_supernodal);
-    if (fresh_supernodal == supernodal)
+    if (fresh_supernodal == supernodal) {
       for (Eigen::Index i = 0; i < x.size(); ++i) ASSERT_EQ(x(i), fresh(i)) << i;
+    }
   };
   kept.set_pattern(loose.bodies, loose.pairs);
   factorise(loose, 1, false);

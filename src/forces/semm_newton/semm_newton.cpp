@@ -255,19 +255,21 @@ void build_island(const std::vector<ContactPoint>& points, const std::vector<Rea
   island.factor.set_pattern(static_cast<int>(nb), problem.pairs);
 }
 
-// J dy: the change of a row's velocity that a change dy of the bodies' velocities makes.
-Vec2 row_change(const Row& row, const Vector& dy) {
-  Vec2 du = Vec2::Zero();
+// `from` + J y, summed side by side.
+Vec2 add_jacobian_times(const Row& row, const Vector& y, Vec2 from) {
   for (int s = 0; s < 2; ++s)
-    if (row.side[s] >= 0) du += row.jacobian[s] * dy.segment<6>(6 * row.side[s]);
-  return du;
+    if (row.side[s] >= 0) from += row.jacobian[s] * y.segment<6>(6 * row.side[s]);
+  return from;
 }
 
+// A row's velocity u at the bodies' velocities y.
 Vec2 row_velocity(const Row& row, const Vector& y) {
-  Vec2 u = row.constant;
-  for (int s = 0; s < 2; ++s)
-    if (row.side[s] >= 0) u += row.jacobian[s] * y.segment<6>(6 * row.side[s]);
-  return u;
+  return add_jacobian_times(row, y, row.constant);
+}
+
+// J dy: the change of a row's velocity that a change dy of the bodies' velocities makes.
+Vec2 row_change(const Row& row, const Vector& dy) {
+  return add_jacobian_times(row, dy, Vec2::Zero());
 }
 
 // The friction limits of each patch from its normal impulses: mu times their sum (slip), mu
