@@ -29,7 +29,10 @@
 // minimum degree on the graph of the bodies and their live pairs (order_bodies): Eigen's own
 // ordering of the 6 N unknowns, and its permutation of the matrix in every factorisation, took
 // 7-12 % more time in pours (docs/benchmarks.md, "The factor's pattern: only the pairs that
-// push"). Eigen's symbolic analysis, which counts the entries of the factor's columns, is made
+// push"). CHOLMOD, given the same matrix, still orders it its own way and permutes it in every
+// factorisation (cholmod_transpose_sym, 3-4 % of a crash's or a drum's samples): work done
+// twice, left so far because its order fills in differently and would change the bits.
+// Eigen's symbolic analysis, which counts the entries of the factor's columns, is made
 // once per pattern and decides; the analysis of the chosen factorisation is reused by every
 // iteration while no pair joins the pattern, and by the next steps while the island's contact
 // graph and the pairs that push stay the same (a resting island). The pattern depends only on
