@@ -23,6 +23,7 @@ else()
   set(tem_test_costs
       PhysicsScene.MeshStaplePourComesToRest 61
       PhysicsScene.DefaultRingAndColumnComeToRest 32
+      PhysicsScene.NewtonPourOfAHundredCoinsSleeps 12
       MeshApprox.TorusBlocksAreDisjointAndKeepTheHole 26
       MeshApprox.BlocksCoverTheMesh 17
       MeshApprox.MaxBlocksIsRespected 13

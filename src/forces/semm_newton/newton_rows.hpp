@@ -23,8 +23,9 @@
 // normal rows and kFrictionRegularisation for the others while Newton finds the regularised
 // answer (soft enough that the active set of a pour's island settles in a few iterations;
 // MuJoCo's default impedance gives R = 0.11 w), kRestingFrictionRegularisation for the friction
-// of an island at rest (semm_newton.cpp, at_rest), kExactRegularisation for friction in the
-// polish (a millionth: the creep it leaves is far below anything a test or a user could see).
+// of an island at rest (semm_newton.cpp, at_rest), kExactRegularisation for friction held in
+// stick in the polish (a millionth: the creep it leaves is far below anything a test or a user
+// could see) and kSlipRegularisation for friction that slips in it.
 #pragma once
 
 #include <Eigen/Dense>
@@ -52,6 +53,16 @@ inline constexpr Real kFrictionRegularisation = 1e-1;
 // rule of friction, per island, and friction of an island at rest").
 inline constexpr Real kRestingFrictionRegularisation = 1e-2;
 inline constexpr Real kExactRegularisation = 1e-6;
+// R of a friction row that slips in the polish. A slipping row's impulse is on its limit
+// whatever R; R only sets how its direction, that of c - u / R, follows the slip u: a slip
+// slower than R r (some 1e-4 mu g dt on a resting coin) leaves it near the regularised
+// answer's direction c, a faster one turns it against the slip. At 1e-6 the rows on their
+// limits in a resting pile slip at round-off speeds, their direction swings from iterate to
+// iterate, and the polish failed in nearly every step: a 100-coin pile never came to rest.
+// At the regularised answer's R, at 1e-3 and at 1e-5 two or three of twelve 100-coin pours
+// were still moving at 0.3 s; at 1e-4 all twelve slept by then, at the cost of more rows let
+// go in a settled pile's polish (docs/benchmarks.md, "Friction that slips in the polish").
+inline constexpr Real kSlipRegularisation = 1e-4;
 
 struct Row {
   enum class Kind : std::uint8_t { normal, slip, twist, rolling };

@@ -641,9 +641,9 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
   island.converged = solved;
 
   // The polish (as OSQP polishes its ADMM answer): each friction row is held in the state the
-  // regularised answer found, stick or slip, with R a millionth of w and its centre at that
-  // answer, and Newton solves again; a held row that then needs more than its limit is let go
-  // and slips. If an iteration fails to halve the gradient, or the polish takes more than
+  // regularised answer found, stick or slip, with R a millionth of w in stick and
+  // kSlipRegularisation in slip and its centre at that answer, and Newton solves again; a held
+  // row that then needs more than its limit is let go and slips. If an iteration fails to halve the gradient, or the polish takes more than
   // kMaxPolishIterations, the regularised answer stands.
   if (solved) {
     const Vector soft_y = s.y;
@@ -653,7 +653,8 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
       if (row.kind == Row::Kind::normal || !(row.radius > 0)) continue;
       row.centre = s.response[r].impulse;
       row.held = size_of(row, row.centre) < row.radius * (1 - tolerance);
-      row.regularisation = newton::kExactRegularisation * row.delassus;
+      row.regularisation = (row.held ? newton::kExactRegularisation : newton::kSlipRegularisation) *
+                           row.delassus;
     }
     const int budget = island.iterations + kMaxPolishIterations;
     bool polished =
@@ -664,6 +665,7 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
         if (rows[r].held &&
             size_of(rows[r], s.response[r].impulse) > rows[r].radius * (1 + tolerance)) {
           rows[r].held = false;
+          rows[r].regularisation = newton::kSlipRegularisation * rows[r].delassus;
           let_go = true;
         }
       if (!mirror_rows(island, bodies, problem, s) && !let_go) break;

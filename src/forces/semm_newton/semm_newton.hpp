@@ -21,9 +21,10 @@
 //   answer's; a pour's islands converge in a few iterations where stiff rows stalled
 //   (docs/benchmarks.md);
 // - the polish: each friction row held in the stick or slip the regularised answer found, R
-//   1e-6 w, solved again; rows held in stick beyond their limit are let go. Converged, friction
-//   is exact Coulomb within the limits set (no lift of a sliding body, no creep at the friction
-//   angle; the limits are not their fixed point, docs/method.md); should an iteration fail to
+//   1e-6 w in stick and 1e-4 w in slip (newton_rows.hpp, kSlipRegularisation), solved again;
+//   rows held in stick beyond their limit are let go. Converged, friction is exact Coulomb
+//   within the limits set (no lift of a sliding body, no creep at the friction angle; the
+//   limits are not their fixed point, docs/method.md); should an iteration fail to
 //   halve the gradient (Newton's local rate: the polish starts next to its answer or nowhere
 //   near it), or kMaxPolishIterations pass, the regularised answer stands.
 //   It takes one iteration at least, which lands a body at rest on round-off.
