@@ -2,9 +2,8 @@
 // reaches the floor within one solve, in as many Newton iterations at forty coins as at ten;
 // the same bits at any thread count; a stopped box at rest in every step; a pyramid of cubes,
 // a pile's island, on CHOLMOD's supernodal factorisation; a poured pile that rests and sleeps;
-// the scene key read and written. The
-// closed forms of the box on the floor and on the incline are in test_physics.cpp,
-// run with both solvers.
+// the scene key read and written. The closed forms of the box on the floor and on the incline
+// are in test_physics.cpp, run with both solvers.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,9 +13,9 @@
 
 #include "io/scene_reader.hpp"
 #include "io/scene_writer.hpp"
+#include "simulation/step.hpp"
 #include "support/coin_column.hpp"
 #include "support/parallel.hpp"
-#include "simulation/step.hpp"
 #include "support/simulate.hpp"
 
 namespace tem {
@@ -246,10 +245,11 @@ TEST(PhysicsScene, NewtonPourOfAHundredCoinsSleeps) {
   for (const Body& b : model.bodies) mass += b.inertia.mass;
   report("newton pour: coins asleep at 0.3 s", asleep);
   report("newton pour: deepest overlap / thickness", deepest / 0.1);
-  report("newton pour: largest energy rise / (M g 1cm)", rise / (mass * model.scene.gravity.norm()));
+  const Real weight = mass * model.scene.gravity.norm();
+  report("newton pour: largest energy rise / (M g 1cm)", rise / weight);
   EXPECT_EQ(asleep, 100);
   EXPECT_LT(deepest, 0.01 * 0.1);
-  EXPECT_LE(rise, 1e-12 * mass * model.scene.gravity.norm());
+  EXPECT_LE(rise, 1e-12 * weight);
 }
 
 TEST(SemmNewton, SceneKeyReadAndWritten) {

@@ -658,8 +658,9 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
   // The polish (as OSQP polishes its ADMM answer): each friction row is held in the state the
   // regularised answer found, stick or slip, with R a millionth of w in stick and
   // kSlipRegularisation in slip and its centre at that answer, and Newton solves again; a held
-  // row that then needs more than its limit is let go and slips. If an iteration fails to halve the gradient, or the polish takes more than
-  // kMaxPolishIterations, the regularised answer stands.
+  // row that then needs more than its limit is let go and slips. If an iteration fails to halve
+  // the gradient, or the polish takes more than kMaxPolishIterations, the regularised answer
+  // stands.
   if (solved) {
     const Vector soft_y = s.y;
     const std::vector<Row> soft_rows = rows;
