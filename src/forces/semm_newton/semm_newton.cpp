@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numeric>
 
@@ -273,32 +274,52 @@ Vec2 row_change(const Row& row, const Vector& dy) {
 }
 
 // The friction limits of each patch from its normal impulses: mu times their sum (slip), mu
-// times their moments about the centre (twist), mu_r R times their sum (rolling).
-void set_limits(const IslandProblem& problem, std::vector<Row>& rows,
-                const std::vector<Real>& normal_impulse, Real& change, Real& largest) {
-  change = largest = 0;
+// times their moments about the centre (twist), mu_r R times their sum (rolling); one per friction
+// row (0 for the normal rows), with the factor that turns it into a force (the twist limit is a
+// moment: compared as the force that gives it at the mean lever; 0 where there is none).
+struct Limits {
+  std::vector<Real> value, as_force;
+};
+
+void friction_limits(const IslandProblem& problem, const std::vector<Row>& rows,
+                     const std::vector<Real>& normal_impulse, Limits& out) {
+  out.value.assign(rows.size(), 0);
+  out.as_force.assign(rows.size(), 1);
   for (const IslandProblem::PatchRows& pr : problem.patch_rows) {
     Real total = 0, reach = 0;
     for (int r = pr.first; r < pr.first + pr.normals; ++r) {
       total += normal_impulse[r];
       reach += normal_impulse[r] * rows[r].lever;
     }
-    auto set = [&](int r, Real limit) {
-      if (r < 0) return;
-      change = std::max(change, std::abs(limit - rows[r].radius));
-      largest = std::max(largest, limit);
-      rows[r].radius = limit;
-    };
-    set(pr.slip, pr.mu * total);
-    // The twist limit is a moment: compared as the force that gives it at the mean lever.
+    if (pr.slip >= 0) out.value[pr.slip] = pr.mu * total;
     if (pr.twist >= 0) {
-      const Real before = rows[pr.twist].radius;
-      rows[pr.twist].radius = pr.mu * reach;
-      if (reach > 0 && total > 0)
-        change = std::max(change, std::abs(pr.mu * reach - before) * total / reach);
+      out.value[pr.twist] = pr.mu * reach;
+      out.as_force[pr.twist] = reach > 0 && total > 0 ? total / reach : 0;
     }
-    set(pr.rolling, pr.rolling_limit * total);
+    if (pr.rolling >= 0) out.value[pr.rolling] = pr.rolling_limit * total;
   }
+}
+
+// How far limits `to` lie from `from` (the largest change, as a force), and the largest slip or
+// rolling limit of `to`.
+void limits_apart(const std::vector<Row>& rows, const Limits& to,
+                  const std::function<Real(size_t)>& from, Real& change, Real& largest) {
+  change = largest = 0;
+  for (size_t r = 0; r < rows.size(); ++r) {
+    if (rows[r].kind == Row::Kind::normal) continue;
+    change = std::max(change, std::abs(to.value[r] - from(r)) * to.as_force[r]);
+    if (rows[r].kind != Row::Kind::twist) largest = std::max(largest, to.value[r]);
+  }
+}
+
+// The rows' limits set from the normal impulses; `change` and `largest` as limits_apart.
+void set_limits(const IslandProblem& problem, std::vector<Row>& rows,
+                const std::vector<Real>& normal_impulse, Limits& limits, Real& change,
+                Real& largest) {
+  friction_limits(problem, rows, normal_impulse, limits);
+  limits_apart(rows, limits, [&](size_t r) { return rows[r].radius; }, change, largest);
+  for (size_t r = 0; r < rows.size(); ++r)
+    if (rows[r].kind != Row::Kind::normal) rows[r].radius = limits.value[r];
 }
 
 // One iterate of an island: y, the Newton step and the gradient there, and each row's velocity,
@@ -450,6 +471,11 @@ Vector mobility_times(const Island& island, const std::vector<BodyResponse>& bod
   return push;
 }
 
+// The first pass's early stop (solve_island): the balance its iterate must meet, and how much of
+// their move the limits it gives may still change from one iterate to the next.
+inline constexpr Real kLimitsBalance = 1e-1;
+inline constexpr Real kLimitsSettled = 5e-2;
+
 // The stopping rule. The gradient of l is M (y - y_free) - sum J^T gamma: the momentum the
 // impulses read off the rows fail to give the bodies. Converged when it is, in the norm of M^-1,
 // at most `tolerance` of the impulses' own (|M (y - y_free)|) or at the round-off that the rows'
@@ -471,7 +497,8 @@ Balance balance(const Island& island, const std::vector<BodyResponse>& bodies,
     const Eigen::Index at = static_cast<Eigen::Index>(6 * k);
     const BodyResponse& b = bodies[island.bodies[k]];
     const Vec6 g = s.gradient.segment<6>(at);
-    residual += b.inverse_mass * g.head<3>().squaredNorm() + g.tail<3>().dot(b.angular * g.tail<3>());
+    residual +=
+        b.inverse_mass * g.head<3>().squaredNorm() + g.tail<3>().dot(b.angular * g.tail<3>());
     const Vec6 d = s.y.segment<6>(at) - problem.free.segment<6>(at);
     made += d.dot(problem.metric[k] * d);
     const Vec6 y = s.y.segment<6>(at);
@@ -488,15 +515,19 @@ Balance balance(const Island& island, const std::vector<BodyResponse>& bodies,
 // and the impulses read off the rows there are off by the gradient, up to the tolerance: a box
 // at rest would move at up to 3e-10 cm/s in some steps. One Newton step from there lands on
 // the exact answer of its stick and slip to round-off (l is quadratic on that piece).
+// `stop_early`, asked at every iterate that misses the tolerance, may end the iterations there
+// (true): the regularised answer's first pass, whose limits are about to move (solve_island).
 bool newton_iterations(Island& island, const std::vector<BodyResponse>& bodies,
                        const IslandProblem& problem, NewtonState& s, Real band, Real tolerance,
-                       int budget, bool contracting = false) {
+                       int budget, bool contracting = false,
+                       const std::function<bool(const NewtonState&)>& stop_early = {}) {
   Real last = std::numeric_limits<Real>::infinity();
   const int first = island.iterations;
   while (true) {
     evaluate(island, problem, s, island.iterations == 0 ? band : -1, true);
     const Balance b = balance(island, bodies, problem, s, tolerance);
     if (b.met() && !(contracting && island.iterations == first)) return true;
+    if (stop_early && stop_early(s)) return true;
     if (island.iterations >= budget || (contracting && !(b.residual <= 0.5 * last))) return false;
     last = b.residual;
     assemble(island, problem, s);
@@ -598,7 +629,8 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
   for (size_t r = 0; r < rows.size(); ++r)
     if (rows[r].kind == Row::Kind::normal) normal[r] = impulses[rows[r].point].normal;
   Real change = 0, largest = 0;
-  set_limits(problem, rows, normal, change, largest);
+  Limits limits;
+  set_limits(problem, rows, normal, limits, change, largest);
   NewtonState warm;
   warm.response.assign(rows.size(), RowResponse{});
   for (const IslandProblem::PatchRows& pr : problem.patch_rows) {
@@ -640,13 +672,39 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
   // then, once, those of the answer with them: a contact that pushes as it did has its exact
   // limit, and the fixed point of the limits, which contracts by only about 0.27 a pass on a
   // pour (docs/benchmarks.md), is not chased. Passes follow while the energy rule mirrors rows.
+  // The first pass stops short of the tolerance where a second one is to follow anyway: where
+  // its iterate balances to kLimitsBalance, the limits its normal impulses give lie beyond the
+  // tolerance from the ones set, and they moved by at most kLimitsSettled of that since the last
+  // iterate. The limits are then taken from there and the second pass converges to the
+  // tolerance with them. Solving the first pass further would sharpen limits that are off by the
+  // unchased fixed point anyway (a quarter of their move); in a flow it took the iterations of
+  // Newton's quadratic end that the second pass takes again. A resting island's limits move
+  // little, and 5 % of a small move settles only next to the answer: the box at the friction
+  // angle still holds (docs/benchmarks.md, "The first pass's early stop").
+  bool early = false;
+  Limits trial, last_trial;
+  const auto limits_move = [&](const NewtonState& at) {
+    for (size_t r = 0; r < rows.size(); ++r)
+      normal[r] = rows[r].kind == Row::Kind::normal ? at.response[r].impulse.x() : 0;
+    std::swap(trial, last_trial);
+    friction_limits(problem, rows, normal, trial);
+    Real moved = 0, top = 0, since = 0, unused = 0;
+    limits_apart(rows, trial, [&](size_t r) { return rows[r].radius; }, moved, top);
+    const bool first = last_trial.value.empty();
+    if (!first)
+      limits_apart(rows, trial, [&](size_t r) { return last_trial.value[r]; }, since, unused);
+    const Balance loose = balance(island, bodies, problem, at, kLimitsBalance);
+    early = !first && moved > tolerance * top && since <= kLimitsSettled * moved && loose.met();
+    return early;
+  };
   bool solved = newton_iterations(island, bodies, problem, s, band, tolerance,
-                                  kMaxNewtonIterations);
+                                  kMaxNewtonIterations, false, limits_move);
   if (solved) {
     for (size_t r = 0; r < rows.size(); ++r)
       normal[r] = rows[r].kind == Row::Kind::normal ? s.response[r].impulse.x() : 0;
-    set_limits(problem, rows, normal, change, largest);
-    bool again = mirror_rows(island, bodies, problem, s) || change > tolerance * largest;
+    set_limits(problem, rows, normal, limits, change, largest);
+    // Stopped early, the energy rule waits for the converged answer of the second pass.
+    bool again = early || mirror_rows(island, bodies, problem, s) || change > tolerance * largest;
     while (solved && again) {
       solved = newton_iterations(island, bodies, problem, s, band, tolerance,
                                  kMaxNewtonIterations);

@@ -18,8 +18,8 @@
 // Two stages per island (semm_newton.cpp, solve_island):
 // - the regularised answer: soft rows (R 1e-3 w normal, 1e-1 w friction, 1e-2 w friction in an
 //   island at rest), friction limits from the last step's normal impulses and then once from the
-//   answer's; a pour's islands converge in a few iterations where stiff rows stalled
-//   (docs/benchmarks.md);
+//   answer's (or from an iterate of the first pass where they have settled short of it); a
+//   pour's islands converge in a few iterations where stiff rows stalled (docs/benchmarks.md);
 // - the polish: each friction row held in the stick or slip the regularised answer found, R
 //   1e-6 w in stick and 1e-4 w in slip (newton_rows.hpp, kSlipRegularisation), solved again;
 //   rows held in stick beyond their limit are let go. Converged, friction is exact Coulomb
