@@ -333,6 +333,14 @@ struct NewtonState {
   std::vector<Real> normal_impulse;
 };
 
+// Each normal row's impulse at the iterate `s` (0 for the other rows): what sets the limits.
+void normal_impulses(const std::vector<Row>& rows, const NewtonState& s,
+                     std::vector<Real>& normal) {
+  normal.resize(rows.size());
+  for (size_t r = 0; r < rows.size(); ++r)
+    normal[r] = rows[r].kind == Row::Kind::normal ? s.response[r].impulse.x() : 0;
+}
+
 // l(y) and, with `gradient`, its gradient; each row's velocity and response kept in `s`.
 Real evaluate(const Island& island, const IslandProblem& problem, NewtonState& s, Real band,
               bool gradient) {
@@ -684,8 +692,7 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
   bool early = false;
   Limits trial, last_trial;
   const auto limits_move = [&](const NewtonState& at) {
-    for (size_t r = 0; r < rows.size(); ++r)
-      normal[r] = rows[r].kind == Row::Kind::normal ? at.response[r].impulse.x() : 0;
+    normal_impulses(rows, at, normal);
     std::swap(trial, last_trial);
     friction_limits(problem, rows, normal, trial);
     Real moved = 0, top = 0, since = 0, unused = 0;
@@ -700,8 +707,7 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
   bool solved = newton_iterations(island, bodies, problem, s, band, tolerance,
                                   kMaxNewtonIterations, false, limits_move);
   if (solved) {
-    for (size_t r = 0; r < rows.size(); ++r)
-      normal[r] = rows[r].kind == Row::Kind::normal ? s.response[r].impulse.x() : 0;
+    normal_impulses(rows, s, normal);
     set_limits(problem, rows, normal, limits, change, largest);
     // Stopped early, the energy rule waits for the converged answer of the second pass.
     bool again = early || mirror_rows(island, bodies, problem, s) || change > tolerance * largest;
