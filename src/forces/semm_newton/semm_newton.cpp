@@ -301,9 +301,10 @@ void friction_limits(const IslandProblem& problem, const std::vector<Row>& rows,
 }
 
 // How far limits `to` lie from `from` (the largest change, as a force), and the largest slip or
-// rolling limit of `to`.
-void limits_apart(const std::vector<Row>& rows, const Limits& to,
-                  const std::function<Real(size_t)>& from, Real& change, Real& largest) {
+// rolling limit of `to`. `from(r)`: row r's limit to compare with.
+template <class From>
+void limits_apart(const std::vector<Row>& rows, const Limits& to, const From& from, Real& change,
+                  Real& largest) {
   change = largest = 0;
   for (size_t r = 0; r < rows.size(); ++r) {
     if (rows[r].kind == Row::Kind::normal) continue;
@@ -312,11 +313,8 @@ void limits_apart(const std::vector<Row>& rows, const Limits& to,
   }
 }
 
-// The rows' limits set from the normal impulses; `change` and `largest` as limits_apart.
-void set_limits(const IslandProblem& problem, std::vector<Row>& rows,
-                const std::vector<Real>& normal_impulse, Limits& limits, Real& change,
-                Real& largest) {
-  friction_limits(problem, rows, normal_impulse, limits);
+// The rows' limits set to `limits` (friction_limits); `change` and `largest` as limits_apart.
+void set_limits(const Limits& limits, std::vector<Row>& rows, Real& change, Real& largest) {
   limits_apart(rows, limits, [&](size_t r) { return rows[r].radius; }, change, largest);
   for (size_t r = 0; r < rows.size(); ++r)
     if (rows[r].kind != Row::Kind::normal) rows[r].radius = limits.value[r];
@@ -638,7 +636,8 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
     if (rows[r].kind == Row::Kind::normal) normal[r] = impulses[rows[r].point].normal;
   Real change = 0, largest = 0;
   Limits limits;
-  set_limits(problem, rows, normal, limits, change, largest);
+  friction_limits(problem, rows, normal, limits);
+  set_limits(limits, rows, change, largest);
   NewtonState warm;
   warm.response.assign(rows.size(), RowResponse{});
   for (const IslandProblem::PatchRows& pr : problem.patch_rows) {
@@ -692,23 +691,29 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
   bool early = false;
   Limits trial, last_trial;
   const auto limits_move = [&](const NewtonState& at) {
+    // Every iterate's limits, for the next one's "since"; compared only where it balances.
     normal_impulses(rows, at, normal);
     std::swap(trial, last_trial);
     friction_limits(problem, rows, normal, trial);
+    if (last_trial.value.empty() || !balance(island, bodies, problem, at, kLimitsBalance).met())
+      return false;
     Real moved = 0, top = 0, since = 0, unused = 0;
     limits_apart(rows, trial, [&](size_t r) { return rows[r].radius; }, moved, top);
-    const bool first = last_trial.value.empty();
-    if (!first)
-      limits_apart(rows, trial, [&](size_t r) { return last_trial.value[r]; }, since, unused);
-    const Balance loose = balance(island, bodies, problem, at, kLimitsBalance);
-    early = !first && moved > tolerance * top && since <= kLimitsSettled * moved && loose.met();
+    limits_apart(rows, trial, [&](size_t r) { return last_trial.value[r]; }, since, unused);
+    early = moved > tolerance * top && since <= kLimitsSettled * moved;
     return early;
   };
   bool solved = newton_iterations(island, bodies, problem, s, band, tolerance,
                                   kMaxNewtonIterations, false, limits_move);
   if (solved) {
-    normal_impulses(rows, s, normal);
-    set_limits(problem, rows, normal, limits, change, largest);
+    // Stopped early, `trial` holds the limits of the iterate it stopped at.
+    if (early) {
+      std::swap(limits, trial);
+    } else {
+      normal_impulses(rows, s, normal);
+      friction_limits(problem, rows, normal, limits);
+    }
+    set_limits(limits, rows, change, largest);
     // Stopped early, the energy rule waits for the converged answer of the second pass.
     bool again = early || mirror_rows(island, bodies, problem, s) || change > tolerance * largest;
     while (solved && again) {
