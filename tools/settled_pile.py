@@ -7,7 +7,9 @@ position and quaternion and no velocity, in the run's container and walls, with 
 given (the scene's defaults for every key it does not set), time step and duration. Step costs of
 different solvers on the same settled pile are then `tem run`s of its scenes (docs/benchmarks.md,
 "SEMM by Newton"). The pile starts without the run's contact memory (no warm start): its first
-steps are what a solver meets on a pile it did not pour. Standard library only.
+steps are what a solver meets on a pile it did not pour. A peer engine's pile reads the same way:
+`tem_bullet SCENE --final-run DIR` (bench/peers/peer_run.hpp) writes its last poses as such a
+folder. Standard library only.
 
   /usr/bin/python3 tools/settled_pile.py out/pour --contact '{"solver": "newton"}' \
       --dt 5e-4 --duration 0.02 > settled_newton.json

@@ -5,11 +5,15 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <stdexcept>
 #include <vector>
 
+#include "io/run_output.hpp"
 #include "io/scene_reader.hpp"
+#include "io/scene_writer.hpp"
 #include "simulation/step.hpp"
 #include "tem_measures.hpp"
 
@@ -26,6 +30,7 @@ struct Options {
   double restitution = -1;  // -1: the scene's
   bool sleeping = true;
   bool print_final = false;  // final centre of mass of every body, on stderr
+  std::string final_run;     // folder for the last poses as a run's files; empty: none
   std::string samples;       // CSV of the pour rules' measures; empty: none
   double sample_every = 0.01;
   double rest_speed = 0.1;
@@ -38,7 +43,7 @@ struct Options {
   std::cerr << program << ": " << why << "\n"
             << "usage: " << program
             << " SCENE.json [--steps N | --duration S] [--dt DT] [--report-every K] "
-               "[--friction MU] [--restitution E] [--no-sleep] [--print-final] "
+               "[--friction MU] [--restitution E] [--no-sleep] [--print-final] [--final-run DIR] "
                "[--samples FILE] [--sample-every S] [--rest-speed V] [--rest-window W] "
                "[--creep-window W]"
             << (engine.extra_usage.empty() ? "" : " ") << engine.extra_usage << "\n";
@@ -69,7 +74,10 @@ Options parse(int argc, char** argv, const PeerEngine& engine) {
     else if (a == "--restitution") o.restitution = value();
     else if (a == "--no-sleep") o.sleeping = false;
     else if (a == "--print-final") o.print_final = true;
-    else if (a == "--samples") {
+    else if (a == "--final-run") {
+      if (i + 1 >= argc) usage(engine, a + " needs a folder");
+      o.final_run = argv[++i];
+    } else if (a == "--samples") {
       if (i + 1 >= argc) usage(engine, a + " needs a file name");
       o.samples = argv[++i];
     } else if (a == "--sample-every") o.sample_every = value();
@@ -141,6 +149,24 @@ class Sampler {
   Real creep_ = 0;
 };
 
+// The last poses as the files of a `tem run` that tools/settled_pile.py reads: scene.json (the
+// scene as read) and bodies.csv with one row a body, so that a pile the engine made can be
+// started in TEM.
+void write_final_run(const std::string& folder, const SceneDef& scene, const Model& model,
+                     const State& state) {
+  std::error_code error;
+  std::filesystem::create_directories(folder, error);
+  if (error) throw std::runtime_error(folder + ": cannot be created: " + error.message());
+  std::string message;
+  if (!write_scene_file(scene, folder + "/scene.json", &message))
+    throw std::runtime_error(message);
+  std::string rows = std::string(kBodiesHeader) + "\n";
+  append_body_rows(rows, model, state);
+  std::ofstream bodies(folder + "/bodies.csv");
+  bodies << rows;
+  if (!bodies.flush()) throw std::runtime_error(folder + "/bodies.csv: cannot be written");
+}
+
 }  // namespace
 
 int run_peer(int argc, char** argv, PeerEngine& engine) {
@@ -203,7 +229,9 @@ int run_peer(int argc, char** argv, PeerEngine& engine) {
       }
     }
 
-    const State final_state = world->state();
+    State final_state = world->state();
+    final_state.time = static_cast<Real>(steps) * dt;
+    if (!opt.final_run.empty()) write_final_run(opt.final_run, scene, model, final_state);
     const Overlap o = measure_overlap(model, final_state, workspace);
     if (opt.print_final)
       for (size_t i = 0; i < model.bodies.size(); ++i) {

@@ -5,9 +5,11 @@
 //
 // Options every engine takes:
 //   SCENE.json [--steps N | --duration S] [--dt DT] [--report-every K] [--friction MU]
-//   [--restitution E] [--no-sleep] [--print-final]
+//   [--restitution E] [--no-sleep] [--print-final] [--final-run DIR]
 //   [--samples FILE] [--sample-every S] [--rest-speed V] [--rest-window W] [--creep-window W]
 //
+// --final-run DIR writes the last poses as a run's scene.json and bodies.csv (one row a body),
+// which tools/settled_pile.py turns into a scene: a pile the engine made, for TEM to start from.
 // --samples FILE writes one CSV row every S seconds of simulated time (default 0.01), first at
 // t = 0: what the pour rules need (docs/benchmarks.md "Pour side by side"):
 //   time, outside (centres outside the container box), max_depth (deepest contact patch by

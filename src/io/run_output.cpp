@@ -33,7 +33,6 @@ void open(std::ofstream& file, const std::string& path, const char* header,
   file << header << '\n' << std::flush;
 }
 
-constexpr const char* kBodiesHeader = "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz";
 constexpr const char* kEnergyHeader = "time,kinetic,potential,total,contacts,max_depth";
 // Where bodies have a prescribed motion, the work they did on the others (interface.md): last,
 // after the columns every scene has.
@@ -121,8 +120,7 @@ RunOutput::RunOutput(const std::string& directory, const Model& model, bool cont
         checkpoint ? std::optional<long long>(checkpoint->state.step - 1) : std::nullopt);
 }
 
-void RunOutput::write(const Model& model, const State& state, const Workspace& workspace) {
-  std::string rows;
+void append_body_rows(std::string& rows, const Model& model, const State& state) {
   for (size_t i = 0; i < model.bodies.size(); ++i) {
     const BodyState& s = state.bodies[i];
     const Quat q = attitude_quaternion(s.g);
@@ -135,6 +133,11 @@ void RunOutput::write(const Model& model, const State& state, const Workspace& w
     for (int k = 0; k < 3; ++k) append_field(rows, w[k]);
     rows += '\n';
   }
+}
+
+void RunOutput::write(const Model& model, const State& state, const Workspace& workspace) {
+  std::string rows;
+  append_body_rows(rows, model, state);
   bodies_ << rows << std::flush;
 
   const Energies e = system_energies(model, state);

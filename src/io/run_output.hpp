@@ -57,4 +57,9 @@ class RunOutput {
 // paper mode, where eq. 16 lets g drift off the rotations, its polar factor.
 Quat attitude_quaternion(const Mat3& g);
 
+// bodies.csv: its header, and one row a body of `state` (interface.md's columns) appended to
+// `rows`.
+inline constexpr const char* kBodiesHeader = "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz";
+void append_body_rows(std::string& rows, const Model& model, const State& state);
+
 }  // namespace tem

@@ -160,17 +160,17 @@ bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
   return supernodal_factor_->info() == Eigen::Success;
 }
 
-void IslandFactor::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+void IslandFactor::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   if (kind_ == Kind::dense) {
     x = dense_factor_.solve(b);
     return;
   }
-  Eigen::VectorXd ordered(b.size()), answer;
-  for (int k = 0; k < bodies_; ++k) ordered.segment<6>(6 * position_[k]) = b.segment<6>(6 * k);
-  if (kind_ == Kind::simplicial) answer = simplicial_factor_->solve(ordered);
-  else serially([&] { answer = supernodal_factor_->solve(ordered); });
+  ordered_.resize(b.size());
+  for (int k = 0; k < bodies_; ++k) ordered_.segment<6>(6 * position_[k]) = b.segment<6>(6 * k);
+  if (kind_ == Kind::simplicial) answer_ = simplicial_factor_->solve(ordered_);
+  else serially([&] { answer_ = supernodal_factor_->solve(ordered_); });
   x.resize(b.size());
-  for (int k = 0; k < bodies_; ++k) x.segment<6>(6 * k) = answer.segment<6>(6 * position_[k]);
+  for (int k = 0; k < bodies_; ++k) x.segment<6>(6 * k) = answer_.segment<6>(6 * position_[k]);
 }
 
 }  // namespace tem::newton

@@ -74,7 +74,7 @@ class IslandFactor {
   // Returns false if H is not positive definite (it always is in exact arithmetic: M is).
   bool factorise(const std::vector<Mat6>& diagonal, const std::vector<Mat6>& off_diagonal);
   // x = H^-1 b.
-  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
+  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   // Whether this step's factorisation is CHOLMOD's supernodal one (known once factorised).
   bool supernodal() const { return kind_ == Kind::supernodal; }
   // How many symbolic analyses this factor has made: one per new pattern.
@@ -103,6 +103,7 @@ class IslandFactor {
   // by approximate minimum degree on the graph of the bodies and their live pairs, once per
   // pattern.
   std::vector<int> position_;
+  Eigen::VectorXd ordered_, answer_;  // solve's right-hand side and answer in the factor's order
   void order_bodies();
   struct SimplicialFactor;  // Eigen's, with the count of its factor's entries
   struct SupernodalFactor;  // CHOLMOD's, defined where its header is included: the .cpp

@@ -490,14 +490,17 @@ inline constexpr Real kLimitsSettled = 5e-2;
 inline constexpr Real kRoundOff = 100 * std::numeric_limits<Real>::epsilon() /
                                   newton::kExactRegularisation;
 
-// The gradient's size in the norm of M^-1 (`residual`) and what it must fall to (`allowed`).
+// The gradient's size in the norm of M^-1 (`residual`), and what it must fall to at a tolerance:
+// that of the impulses' own momentum (`made`, |M (y - y_free)|) plus the round-off of |y|_M
+// (`size`).
 struct Balance {
-  Real residual = 0, allowed = 0;
-  bool met() const { return residual <= allowed; }
+  Real residual = 0, made = 0, size = 0;
+  Real allowed(Real tolerance) const { return tolerance * made + kRoundOff * size; }
+  bool met(Real tolerance) const { return residual <= allowed(tolerance); }
 };
 
 Balance balance(const Island& island, const std::vector<BodyResponse>& bodies,
-                const IslandProblem& problem, const NewtonState& s, Real tolerance) {
+                const IslandProblem& problem, const NewtonState& s) {
   Real residual = 0, made = 0, size = 0;
   for (size_t k = 0; k < island.bodies.size(); ++k) {
     const Eigen::Index at = static_cast<Eigen::Index>(6 * k);
@@ -510,7 +513,7 @@ Balance balance(const Island& island, const std::vector<BodyResponse>& bodies,
     const Vec6 y = s.y.segment<6>(at);
     size += y.dot(problem.metric[k] * y);
   }
-  return {std::sqrt(residual), tolerance * std::sqrt(made) + kRoundOff * std::sqrt(size)};
+  return {std::sqrt(residual), std::sqrt(made), std::sqrt(size)};
 }
 
 // Newton's iterations on one island until l's gradient balances (the stopping rule) or the
@@ -521,19 +524,20 @@ Balance balance(const Island& island, const std::vector<BodyResponse>& bodies,
 // and the impulses read off the rows there are off by the gradient, up to the tolerance: a box
 // at rest would move at up to 3e-10 cm/s in some steps. One Newton step from there lands on
 // the exact answer of its stick and slip to round-off (l is quadratic on that piece).
-// `stop_early`, asked at every iterate that misses the tolerance, may end the iterations there
+// `stop_early`, given every iterate that misses the tolerance and its balance, may end them there
 // (true): the regularised answer's first pass, whose limits are about to move (solve_island).
 bool newton_iterations(Island& island, const std::vector<BodyResponse>& bodies,
                        const IslandProblem& problem, NewtonState& s, Real band, Real tolerance,
                        int budget, bool contracting = false,
-                       const std::function<bool(const NewtonState&)>& stop_early = {}) {
+                       const std::function<bool(const NewtonState&, const Balance&)>&
+                           stop_early = {}) {
   Real last = std::numeric_limits<Real>::infinity();
   const int first = island.iterations;
   while (true) {
     evaluate(island, problem, s, island.iterations == 0 ? band : -1, true);
-    const Balance b = balance(island, bodies, problem, s, tolerance);
-    if (b.met() && !(contracting && island.iterations == first)) return true;
-    if (stop_early && stop_early(s)) return true;
+    const Balance b = balance(island, bodies, problem, s);
+    if (b.met(tolerance) && !(contracting && island.iterations == first)) return true;
+    if (stop_early && stop_early(s, b)) return true;
     if (island.iterations >= budget || (contracting && !(b.residual <= 0.5 * last))) return false;
     last = b.residual;
     assemble(island, problem, s);
@@ -690,12 +694,12 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
   // angle still holds (docs/benchmarks.md, "The first pass's early stop").
   bool early = false;
   Limits trial, last_trial;
-  const auto limits_move = [&](const NewtonState& at) {
+  const auto limits_move = [&](const NewtonState& at, const Balance& b) {
     // Every iterate's limits, for the next one's "since"; compared only where it balances.
     normal_impulses(rows, at, normal);
     std::swap(trial, last_trial);
     friction_limits(problem, rows, normal, trial);
-    if (last_trial.value.empty() || !balance(island, bodies, problem, at, kLimitsBalance).met())
+    if (last_trial.value.empty() || !b.met(kLimitsBalance))
       return false;
     Real moved = 0, top = 0, since = 0, unused = 0;
     limits_apart(rows, trial, [&](size_t r) { return rows[r].radius; }, moved, top);
