@@ -24,6 +24,7 @@ else()
       PhysicsScene.MeshStaplePourComesToRest 61
       PhysicsScene.DefaultRingAndColumnComeToRest 32
       PhysicsScene.NewtonPourOfAHundredCoinsSleeps 12
+      PhysicsScene.NewtonPourWithACoinBalancedOnALineSleeps 12
       MeshApprox.TorusBlocksAreDisjointAndKeepTheHole 26
       MeshApprox.BlocksCoverTheMesh 17
       MeshApprox.MaxBlocksIsRespected 13

@@ -55,9 +55,10 @@ void print_summary(const Simulation& sim, double wall) {
                  t.fallback_islands, t.newton_iteration_limit);
   if (t.regularised_islands > 0)
     std::fprintf(stderr,
-                 "  Newton: %lld islands kept the regularised answer (the polish to exact "
+                 "  Newton: %lld islands kept the regularised answer (moving islands of more "
+                 "than %d bodies, which are not polished, and those whose polish to exact "
                  "friction did not converge)\n",
-                 t.regularised_islands);
+                 t.regularised_islands, t.moving_polish_bodies);
   if (t.corrected_steps > 0)
     std::fprintf(stderr, "  overlap correction: bodies moved apart in %lld of %lld steps\n",
                  t.corrected_steps, t.steps);

@@ -85,9 +85,11 @@ struct RunStatistics {
   // solved by the row solver instead.
   long long fallback_islands = 0;
   int newton_iteration_limit = 0;
-  // contact.solver "newton": islands whose polish to exact friction did not converge, which
-  // kept the regularised answer (docs/method.md, "SEMM by Newton").
+  // contact.solver "newton": islands that kept the regularised answer: moving islands of more
+  // than moving_polish_bodies bodies, which are not polished, and islands whose polish to exact
+  // friction did not converge (docs/method.md, "SEMM by Newton").
   long long regularised_islands = 0;
+  int moving_polish_bodies = 0;
   long long outran_margin = 0;  // bodies that moved farther in a step than their contact margin
   long long substeps = 0;       // summed over the steps, and the most one step took
   int max_substeps = 0;

@@ -404,6 +404,7 @@ RunStatistics Simulation::run_statistics() const {
   r.fallback_islands = t.fallback_islands;
   r.regularised_islands = t.regularised_islands;
   r.newton_iteration_limit = kMaxNewtonIterations;
+  r.moving_polish_bodies = kMovingPolishBodies;
   r.outran_margin = t.outran_margin;
   r.substeps = t.substeps;
   r.max_substeps = t.max_substeps;

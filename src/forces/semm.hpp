@@ -101,7 +101,7 @@ struct SolverReport {
   bool converged = true;
   Real scale = 1;       // < 1: impulses scaled down so as to add no energy (semm_rows.hpp)
   int fallback_islands = 0;  // Newton: islands it did not converge, solved by the rows solver
-  int regularised_islands = 0;  // Newton: islands whose polish did not converge
+  int regularised_islands = 0;  // Newton: islands that kept the regularised answer (unpolished)
   int supernodal_islands = 0;   // Newton: islands factorised by CHOLMOD's supernodal Cholesky
 };
 

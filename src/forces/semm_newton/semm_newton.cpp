@@ -235,8 +235,9 @@ void build_island(const std::vector<ContactPoint>& points, const std::vector<Rea
     problem.patch_rows.push_back(pr);
   }
   // Regularisation, and the Hessian's off-diagonal blocks: one per pair of unknowns a row joins.
-  const Real friction = at_rest(island, bodies) ? newton::kRestingFrictionRegularisation
-                                                : newton::kFrictionRegularisation;
+  island.at_rest = at_rest(island, bodies);
+  const Real friction = island.at_rest ? newton::kRestingFrictionRegularisation
+                                       : newton::kFrictionRegularisation;
   for (Row& row : island.rows) {
     builder.regularise(row, island.bodies, friction);
     if (row.side[0] >= 0 && row.side[1] >= 0)
@@ -733,8 +734,10 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
   // kSlipRegularisation in slip and its centre at that answer, and Newton solves again; a held
   // row that then needs more than its limit is let go and slips. If an iteration fails to halve
   // the gradient, or the polish takes more than kMaxPolishIterations, the regularised answer
-  // stands.
-  if (solved) {
+  // stands. A large moving island keeps its regularised answer (kMovingPolishBodies).
+  const bool polish =
+      island.at_rest || static_cast<int>(island.bodies.size()) <= kMovingPolishBodies;
+  if (solved && polish) {
     const Vector soft_y = s.y;
     const std::vector<Row> soft_rows = rows;
     for (size_t r = 0; r < rows.size(); ++r) {
