@@ -103,9 +103,6 @@ def read_sensor(run_dir, name):
 def grain_masses(run_dir, scene, drum_name):
     """{name: mass} of the bodies of the last ParaView frame, from their surfaces' volume
     (divergence theorem over each body's triangles) times the density of their template."""
-    if not os.path.exists(os.path.join(run_dir, "tem.pvd")):
-        sys.exit("drum_angle.py: %s has no ParaView frames (tem.pvd): the grains' masses are read "
-                 "from the last frame; run the scene with output.paraview true" % run_dir)
     frames = figures.read_frames(run_dir)
     t, bodies_file, _ = frames[-1]
     points, tri, arrays = figures.read_vtu(bodies_file)

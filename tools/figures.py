@@ -36,10 +36,15 @@ BODY_COLOURS = ["#c8a24a", "#5b84b1", "#b5523b", "#6a9c5a", "#8c6bb1", "#d08c3c"
 
 
 def read_frames(run_dir):
-    """[(time, bodies file, contacts file)] in the order of tem.pvd."""
+    """[(time, bodies file, contacts file)] in the order of tem.pvd. A run without ParaView
+    files is refused with the reason, for every tool that reads frames."""
+    pvd = os.path.join(run_dir, "tem.pvd")
+    if not os.path.exists(pvd):
+        sys.exit(f"{os.path.basename(sys.argv[0])}: {pvd} not found: the ParaView frames are "
+                 "written when the scene sets \"output\": {\"paraview\": true}")
     frames = {}
     order = []
-    root = ET.parse(os.path.join(run_dir, "tem.pvd")).getroot()
+    root = ET.parse(pvd).getroot()
     for d in root.iter("DataSet"):
         t = float(d.attrib["timestep"])
         if t not in frames:
@@ -171,9 +176,6 @@ def main():
     parser.add_argument("--azimuth", type=float, default=-60, help="view azimuth (deg)")
     args = parser.parse_args()
     prefix = args.out or os.path.join(args.run_dir, "figure")
-    if not os.path.exists(os.path.join(args.run_dir, "tem.pvd")):
-        sys.exit(f"figures: {args.run_dir}/tem.pvd not found: the snapshots need the ParaView "
-                 "files, written when the scene sets \"output\": {\"paraview\": true}")
     chosen = pick_frames(read_frames(args.run_dir), args.times, args.frames)
     print(snapshots(args.run_dir, chosen, prefix, args.elevation, args.azimuth))
     print(energy_plot(args.run_dir, prefix))
