@@ -4,11 +4,14 @@
 // (a pile's pattern: its factor fills in) takes CHOLMOD's supernodal factorisation, a chain
 // (a column's: no fill) Eigen's; both solve H x = b to round-off, agree with a dense Cholesky,
 // and give the same bits at one and two OpenMP threads (the BLAS held to one). Pairs whose block
-// is 0 (contacts that do not push) are left out of the factor's pattern.
+// is 0 (contacts that do not push) are left out of the factor's pattern. A lattice of
+// kIterativeBodies bodies or more is solved by conjugate gradients to the accuracy asked; a
+// chain as long keeps its factorisation.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <random>
 #include <string>
@@ -35,7 +38,8 @@ struct Hessian {
 // Bodies at the points of an nx x ny x nz lattice, each coupled to its six neighbours. With
 // `pushing` < 1, each pair is coupled with that probability, and otherwise is a pair whose rows
 // are all apart (a contact within the margin that does not push): in the pattern, its block 0.
-Hessian lattice(int nx, int ny, int nz, unsigned seed, Real pushing = 1) {
+// `whole`: with the dense copy (too large beyond a few hundred bodies).
+Hessian lattice(int nx, int ny, int nz, unsigned seed, Real pushing = 1, bool whole = true) {
   std::mt19937 random(seed);
   std::uniform_real_distribution<Real> uniform(-1, 1);
   auto random_block = [&] {
@@ -57,7 +61,7 @@ Hessian lattice(int nx, int ny, int nz, unsigned seed, Real pushing = 1) {
       }
   std::sort(h.pairs.begin(), h.pairs.end());
   h.diagonal.assign(h.bodies, Mat6::Identity());  // the mass matrix, here of unit masses
-  h.dense = Eigen::MatrixXd::Identity(6 * h.bodies, 6 * h.bodies);
+  if (whole) h.dense = Eigen::MatrixXd::Identity(6 * h.bodies, 6 * h.bodies);
   for (const auto& [i, j] : h.pairs) {
     if (pushing < 1 && (uniform(random) + 1) / 2 >= pushing) {
       h.off_diagonal.push_back(Mat6::Zero());
@@ -68,6 +72,7 @@ Hessian lattice(int nx, int ny, int nz, unsigned seed, Real pushing = 1) {
     h.diagonal[i] += c;
     h.diagonal[j] += c;
     h.off_diagonal.push_back(-c);
+    if (!whole) continue;
     h.dense.block<6, 6>(6 * i, 6 * i) += c;
     h.dense.block<6, 6>(6 * j, 6 * j) += c;
     h.dense.block<6, 6>(6 * i, 6 * j) -= c;
@@ -76,7 +81,8 @@ Hessian lattice(int nx, int ny, int nz, unsigned seed, Real pushing = 1) {
   return h;
 }
 
-Eigen::VectorXd solve_at(const Hessian& h, const Eigen::VectorXd& b, int threads, bool& supernodal) {
+Eigen::VectorXd solve_at(const Hessian& h, const Eigen::VectorXd& b, int threads, bool& supernodal,
+                         bool* iterative = nullptr) {
   const int before = max_threads();
   set_threads(threads);
   IslandFactor factor;
@@ -85,6 +91,7 @@ Eigen::VectorXd solve_at(const Hessian& h, const Eigen::VectorXd& b, int threads
   EXPECT_TRUE(factor.factorise(h.diagonal, h.off_diagonal));
   factor.solve(b, x);
   supernodal = factor.supernodal();
+  if (iterative) *iterative = factor.iterative();
   set_threads(before);
   return x;
 }
@@ -190,6 +197,89 @@ TEST(IslandFactor, PairsThatDoNotPushAreLeftOutOfThePattern) {
   factorise(loose, 2, true);   // the same step: the pairs stay
   kept.set_pattern(loose.bodies, loose.pairs);  // the next step
   factorise(loose, 3, false);
+}
+
+// H x from the blocks, and the size of a vector in the norm of the diagonal blocks' inverse (the
+// norm conjugate gradients' accuracy is asked in).
+Eigen::VectorXd times(const Hessian& h, const Eigen::VectorXd& x) {
+  Eigen::VectorXd out(x.size());
+  for (int b = 0; b < h.bodies; ++b) out.segment<6>(6 * b) = h.diagonal[b] * x.segment<6>(6 * b);
+  for (size_t k = 0; k < h.pairs.size(); ++k) {
+    const auto [i, j] = h.pairs[k];
+    out.segment<6>(6 * i) += h.off_diagonal[k] * x.segment<6>(6 * j);
+    out.segment<6>(6 * j) += h.off_diagonal[k].transpose() * x.segment<6>(6 * i);
+  }
+  return out;
+}
+Real block_norm(const Hessian& h, const Eigen::VectorXd& r) {
+  Real sum = 0;
+  for (int b = 0; b < h.bodies; ++b) {
+    const newton::Vec6 part = r.segment<6>(6 * b);
+    sum += part.dot(h.diagonal[b].llt().solve(part));
+  }
+  return std::sqrt(sum);
+}
+
+// Conjugate gradients asked for round-off accuracy give the dense Cholesky's answer; asked for
+// 1e-2, an answer whose residual is at most 1e-2 of the right-hand side in the blocks' norm, and
+// a direction of descent (b . x > 0: the Newton step lowers the objective).
+TEST(IslandFactor, ConjugateGradientsSolveToTheAccuracyAsked) {
+  const Hessian h = lattice(5, 5, 5, 13);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(6 * h.bodies, -1, 2);
+  newton::BlockConjugateGradients cg;
+  ASSERT_TRUE(cg.prepare(h.bodies, h.pairs, h.diagonal, h.off_diagonal));
+  Eigen::VectorXd x;
+  const int many = cg.solve(b, x, 1e-13, 6 * h.bodies);
+  const Eigen::VectorXd dense = h.dense.llt().solve(b);
+  EXPECT_LT((x - dense).norm() / dense.norm(), 1e-9);
+  const int few = cg.solve(b, x, 1e-2, 6 * h.bodies);
+  ::testing::Test::RecordProperty("iterations to 1e-13", many);
+  ::testing::Test::RecordProperty("iterations to 1e-2", few);
+  EXPECT_LT(few, many);
+  EXPECT_LE(block_norm(h, b - times(h, x)), 1e-2 * block_norm(h, b));
+  EXPECT_GT(b.dot(x), 0);
+}
+
+// An island of at least kIterativeBodies bodies whose factor would fill in (an 8 x 8 x 8
+// lattice, 512 bodies) is solved by conjugate gradients, to kIterativeAccuracy, with the same
+// bits at one and two threads and when kept into the next step; a chain as long (600 bodies)
+// keeps its simplicial factorisation and solves to round-off.
+TEST(IslandFactor, LargeIslandThatFillsInTakesConjugateGradients) {
+  const Hessian pile = lattice(8, 8, 8, 14, 1, false);
+  ASSERT_GE(pile.bodies, newton::kIterativeBodies);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(6 * pile.bodies, -1, 2);
+  std::vector<Eigen::VectorXd> answers;
+  for (int threads : {1, 2}) {
+    bool supernodal = true, iterative = false;
+    answers.push_back(solve_at(pile, b, threads, supernodal, &iterative));
+    EXPECT_TRUE(iterative);
+    EXPECT_FALSE(supernodal);
+    EXPECT_LE(block_norm(pile, b - times(pile, answers.back())),
+              newton::kIterativeAccuracy * block_norm(pile, b));
+  }
+  for (Eigen::Index i = 0; i < answers[0].size(); ++i) ASSERT_EQ(answers[0](i), answers[1](i)) << i;
+  // Kept into the next step (the same pattern, other values), the choice and the bits are a
+  // fresh factor's (a resumed run's).
+  const Hessian next = lattice(8, 8, 8, 16, 1, false);
+  ASSERT_EQ(next.pairs, pile.pairs);
+  IslandFactor kept;
+  Eigen::VectorXd x;
+  for (const Hessian* h : {&pile, &next}) {
+    kept.set_pattern(h->bodies, h->pairs);
+    ASSERT_TRUE(kept.factorise(h->diagonal, h->off_diagonal));
+    kept.solve(b, x);
+  }
+  bool supernodal = true, iterative = false;
+  const Eigen::VectorXd fresh = solve_at(next, b, 1, supernodal, &iterative);
+  EXPECT_TRUE(kept.iterative());
+  for (Eigen::Index i = 0; i < x.size(); ++i) ASSERT_EQ(x(i), fresh(i)) << i;
+
+  const Hessian chain = lattice(600, 1, 1, 15, 1, false);
+  const Eigen::VectorXd c = Eigen::VectorXd::LinSpaced(6 * chain.bodies, -1, 2);
+  const Eigen::VectorXd y = solve_at(chain, c, 1, supernodal, &iterative);
+  EXPECT_FALSE(iterative);
+  EXPECT_FALSE(supernodal);
+  EXPECT_LT((times(chain, y) - c).norm() / c.norm(), 1e-12);
 }
 
 }  // namespace test_island_factor

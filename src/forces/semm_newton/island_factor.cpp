@@ -50,6 +50,7 @@ IslandFactor::~IslandFactor() = default;
 
 void IslandFactor::set_pattern(int bodies, const std::vector<std::pair<int, int>>& pairs) {
   live_.assign(pairs.size(), 0);
+  iterative_this_step_ = false;
   // The same contact graph as the last step's (a resting island's): its analysis and choice of
   // factorisation stand while the same pairs push.
   if (bodies == bodies_ && pairs == pairs_) return;
@@ -100,6 +101,13 @@ bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
   // lands in its storage; later factorisations write the values there (the same values in the
   // same places: the same bits).
   mark_live(off_diagonal);
+  // Conjugate gradients chosen in this step stay for the step (its pattern only gains pairs, and
+  // a factor would only fill in further); chosen in an earlier one, they stand while the pairs
+  // that push are those they were chosen for, as a fresh factor's choice would (a resumed run's).
+  if (kind_ == Kind::iterative && (iterative_this_step_ || analysed_)) {
+    iterative_this_step_ = true;
+    return conjugate_gradients_.prepare(bodies_, pairs_, diagonal, off_diagonal);
+  }
   const bool built = analysed_;
   if (!built) order_bodies();
   size_t next = 0;
@@ -143,6 +151,14 @@ bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
     kind_ = Kind::simplicial;
     if (!simplicial_factor_) simplicial_factor_ = std::make_unique<SimplicialFactor>();
     simplicial_factor_->analyzePattern(sparse_matrix_);
+    if (simplicial_factor_->flops_per_entry() >= kSupernodalFlopsPerEntry &&
+        bodies_ >= kIterativeBodies) {
+      kind_ = Kind::iterative;
+      iterative_this_step_ = true;
+      simplicial_factor_.reset();
+      supernodal_factor_.reset();  // a factor of an earlier step would only hold its memory
+      return conjugate_gradients_.prepare(bodies_, pairs_, diagonal, off_diagonal);
+    }
     if (simplicial_factor_->flops_per_entry() >= kSupernodalFlopsPerEntry) {
       kind_ = Kind::supernodal;
       simplicial_factor_.reset();  // its storage for L: some 7 MB on a 1,000-coin pile
@@ -161,6 +177,10 @@ bool IslandFactor::factorise(const std::vector<Mat6>& diagonal,
 }
 
 void IslandFactor::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  if (kind_ == Kind::iterative) {
+    conjugate_gradients_.solve(b, x, kIterativeAccuracy, kMostIterations);
+    return;
+  }
   if (kind_ == Kind::dense) {
     x = dense_factor_.solve(b);
     return;

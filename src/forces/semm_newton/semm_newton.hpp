@@ -10,7 +10,8 @@
 // term (newton_rows.hpp), regularised by R and drawn to the row's last impulse. At the minimum
 // M (y - y_free) = sum J^T gamma, so the impulses gamma are read off the rows. Each Newton
 // iteration solves H dy = -grad l with H the whole island's Hessian, factorised
-// (island_factor.hpp): the top grain's weight reaches the floor in one iteration. An exact line
+// (island_factor.hpp): the top grain's weight reaches the floor in one iteration; on an island
+// of hundreds of grains whose factor fills in, by conjugate gradients to 1e-2 instead. An exact line
 // search along dy (l is convex and piecewise smooth; its slope along dy is monotone) never lets
 // l rise. Islands, bodies joined by contacts, are solved on their own and shared among the
 // threads, each on one thread: the same bits at any thread count.
