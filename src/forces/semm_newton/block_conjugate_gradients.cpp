@@ -26,7 +26,8 @@ bool BlockConjugateGradients::prepare(int bodies, const std::vector<std::pair<in
 
 void BlockConjugateGradients::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& out) const {
   out.resize(x.size());
-  for (int b = 0; b < bodies_; ++b) out.segment<6>(6 * b) = diagonal_blocks_[b] * x.segment<6>(6 * b);
+  for (int b = 0; b < bodies_; ++b)
+    out.segment<6>(6 * b) = diagonal_blocks_[b] * x.segment<6>(6 * b);
   for (size_t k = 0; k < pairs_.size(); ++k) {
     const int i = 6 * pairs_[k].first, j = 6 * pairs_[k].second;
     out.segment<6>(i) += off_diagonal_[k] * x.segment<6>(j);
@@ -36,7 +37,8 @@ void BlockConjugateGradients::multiply(const Eigen::VectorXd& x, Eigen::VectorXd
 
 void BlockConjugateGradients::precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
   z.resize(r.size());
-  for (int b = 0; b < bodies_; ++b) z.segment<6>(6 * b) = diagonal_[b].solve(Vec6(r.segment<6>(6 * b)));
+  for (int b = 0; b < bodies_; ++b)
+    z.segment<6>(6 * b) = diagonal_[b].solve(Vec6(r.segment<6>(6 * b)));
 }
 
 int BlockConjugateGradients::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, Real accuracy,

@@ -43,13 +43,13 @@
 //
 // Where the factor fills in (the supernodal choice) on an island of at least kIterativeBodies
 // bodies, the solve is conjugate gradients instead, preconditioned by the bodies' 6 x 6 blocks
-// and stopped at kIterativeAccuracy (block_conjugate_gradients.hpp): an inexact Newton step, which
-// costs a few more Newton iterations but no factorisation. Measured in whole runs
+// and stopped at kIterativeAccuracy (block_conjugate_gradients.hpp): an inexact Newton step,
+// which costs a few more Newton iterations but no factorisation. Measured in whole runs
 // (docs/benchmarks.md, "Conjugate gradients for large islands"): the silo's 2,000-grain island
-// 2.9 times faster, the 1,000-coin pour's crash 1.5 times, a 10,000-coin pile's sub-steps 3.5
-// times, a settled 1,000-coin pile the same; forced on columns (chains, whose factor does not
-// fill in: never chosen there) seven times slower. Solved to 1e-8 instead, conjugate gradients lost in a pour's crash: the
-// accuracy asked is what pays.
+// 2.5-2.7 times faster, the 1,000-coin pour's crash 1.4 times, a 10,000-coin pile 3.4 times, a
+// settled 1,000-coin pile within the machine's spread; forced on columns (chains, whose factor
+// does not fill in: never chosen there) seven times slower. Solved to 1e-8 instead, conjugate
+// gradients lost in a pour's crash: the accuracy asked is what pays.
 #pragma once
 
 #include <Eigen/Sparse>
