@@ -19,12 +19,22 @@ constexpr Real kG = testing_support::kCoinGravity;
 
 using testing_support::falling_coin;
 
+// The landing and the rebound run with both SEMM solvers (contact.solver "rows" and "newton"):
+// either makes contact before overlap exact to its tolerance.
+class LandingBeforeOverlap : public ::testing::TestWithParam<ContactSolver> {};
+
+SceneDef coin_for(Real height, Real speed, Real dt, ContactSolver solver) {
+  SceneDef scene = falling_coin(height, speed, dt);
+  scene.contact.solver = solver;
+  return scene;
+}
+
 // Dropped from rest 1 cm above the floor at dt = 5e-4 (the coin falls 0.022 cm in its last
 // step, a fifth of its thickness and 14% of its size): it lands within a step of free fall's
 // landing time, at rest exactly on the floor, never overlaps it and never gains energy.
-TEST(ContactBeforeOverlap, CoinLandsWhenFreeFallSaysAndRestsOnTheFloor) {
+TEST_P(LandingBeforeOverlap, CoinLandsWhenFreeFallSaysAndRestsOnTheFloor) {
   const Real dt = 5e-4, h = 1.0;
-  const Model model = build_model(falling_coin(h, 0, dt));
+  const Model model = build_model(coin_for(h, 0, dt, GetParam()));
   ASSERT_TRUE(contact_before_overlap(model.scene));
   State state = initial_state(model);
   Real landed = -1;
@@ -46,9 +56,9 @@ TEST(ContactBeforeOverlap, CoinLandsWhenFreeFallSaysAndRestsOnTheFloor) {
 // The same coin thrown down at 300 cm/s (0.3 cm a step at dt 1e-3, three thicknesses): with
 // restitution 0.5 it leaves at half its arrival speed, from where it stopped, not from inside
 // the floor. The arrival speed is the one at the start of the step it stops in.
-TEST(ContactBeforeOverlap, FastCoinReboundsWithItsRestitution) {
+TEST_P(LandingBeforeOverlap, FastCoinReboundsWithItsRestitution) {
   const Real dt = 1e-3;
-  SceneDef scene = falling_coin(1.0, 300, dt);
+  SceneDef scene = coin_for(1.0, 300, dt, GetParam());
   scene.contact.restitution = 0.5;
   const Model model = build_model(scene);
   State state = initial_state(model);
@@ -67,6 +77,12 @@ TEST(ContactBeforeOverlap, FastCoinReboundsWithItsRestitution) {
   EXPECT_GE(lowest, -1e-12);
   EXPECT_LE(watch.largest_energy_rise, 1e-12 * model.bodies[0].inertia.mass * kG);
 }
+
+INSTANTIATE_TEST_SUITE_P(Solvers, LandingBeforeOverlap,
+                         ::testing::Values(ContactSolver::rows, ContactSolver::newton),
+                         [](const ::testing::TestParamInfo<ContactSolver>& info) {
+                           return info.param == ContactSolver::rows ? "rows" : "newton";
+                         });
 
 // Without contact before overlap (margin 0) the same thrown coin ends the step it arrives in
 // well inside the floor: what the margin prevents.
@@ -103,11 +119,10 @@ TEST(ContactBeforeOverlap, PassingInsideTheMarginPushesNothing) {
   const Model model = build_model(scene);
   State state = initial_state(model);
   int steps_with_patches = 0;
-  simulate(model, state, 0.03, [&](const State&, const Workspace& w) {
-    steps_with_patches += !w.patches.empty();
-  });
+  simulate(model, state, 0.03,
+           [&](const State&, const Workspace& w) { steps_with_patches += !w.patches.empty(); });
   report("slider: steps with a patch", steps_with_patches);
-  EXPECT_GT(steps_with_patches, 0);  // the pair was a contact within the margin...
+  EXPECT_GT(steps_with_patches, 0);              // the pair was a contact within the margin...
   EXPECT_EQ(state.bodies[1].v, Vec3(50, 0, 0));  // ...that never pushed
   EXPECT_EQ(state.bodies[1].omega, Vec3::Zero());
 }
