@@ -32,6 +32,7 @@ struct Solved {
 // A column of `layers` coins at dt 5e-4 for `duration`, solved to `tolerance` within `sweeps`.
 Solved column(int layers, bool conjugate_gradients, Real tolerance, int sweeps, Real duration) {
   SceneDef scene = coin_column(layers, 5e-4);
+  scene.contact.solver = ContactSolver::rows;
   scene.contact.tolerance = tolerance;
   scene.contact.max_sweeps = sweeps;
   scene.contact.conjugate_gradients = conjugate_gradients;
@@ -40,12 +41,11 @@ Solved column(int layers, bool conjugate_gradients, Real tolerance, int sweeps, 
   solved.state = initial_state(model);
   solved.energy_scale = std::abs(system_energies(model, solved.state).total());
   long long steps = 0, total = 0;
-  const auto watch =
-      simulate(model, solved.state, duration, [&](const State&, const Workspace& w) {
-        steps = w.times.steps;
-        total = w.times.sweeps;
-        solved.unconverged_steps = w.times.unconverged_steps;
-      });
+  const auto watch = simulate(model, solved.state, duration, [&](const State&, const Workspace& w) {
+    steps = w.times.steps;
+    total = w.times.sweeps;
+    solved.unconverged_steps = w.times.unconverged_steps;
+  });
   solved.sweeps_per_step = static_cast<Real>(total) / static_cast<Real>(steps);
   solved.energy_rise = watch.largest_energy_rise;
   return solved;
@@ -75,6 +75,7 @@ TEST(ConjugateGradients, ColumnOfFortyCoinsInFarFewerSweeps) {
 // more than the 64 patches under which a colour is swept on one thread.
 TEST(ConjugateGradients, SameBitsAtAnyThreadCount) {
   SceneDef scene = testing_support::coin_lattice(12, 3, 5e-4);
+  scene.contact.solver = ContactSolver::rows;
   scene.contact.conjugate_gradients = true;
   scene.contact.colour_sweeps = true;
   scene.contact.tolerance = 1e-9;  // every step's sweeps run on, with the direction's moves
@@ -94,27 +95,34 @@ TEST(ConjugateGradients, SameBitsAtAnyThreadCount) {
   }
 }
 
-// The key: read, written back, and refused where there are no rows' sweeps to accelerate.
+// The key: read, written back, and refused where there are no rows' sweeps to accelerate: with
+// the blocks solver, and with the default solver (Newton), where the message names the fix.
 TEST(ConjugateGradients, SceneKeyReadWrittenAndRefusedWithoutRows) {
   const std::string body = R"("bodies": [{"name": "b", "position": [0, 0, 0],)"
                            R"( "shape": {"type": "box", "size": [1, 1, 1]}}])";
-  const SceneReadResult on =
-      read_scene_text(R"({"contact": {"acceleration": "conjugate_gradients"}, )" + body + "}",
-                      "cg.json");
+  const SceneReadResult on = read_scene_text(
+      R"({"contact": {"solver": "rows", "acceleration": "conjugate_gradients"}, )" + body + "}",
+      "cg.json");
   ASSERT_TRUE(on.ok());
   EXPECT_TRUE(on.scene.contact.conjugate_gradients);
   const SceneReadResult again = read_scene_text(write_scene_text(on.scene), "written.json");
   ASSERT_TRUE(again.ok());
   EXPECT_TRUE(again.scene.contact.conjugate_gradients);
-  EXPECT_FALSE(read_scene_text(std::string("{") + body + "}", "plain.json").scene.contact
-                   .conjugate_gradients);
+  EXPECT_FALSE(read_scene_text(std::string("{") + body + "}", "plain.json")
+                   .scene.contact.conjugate_gradients);
   const SceneReadResult blocks = read_scene_text(
       R"({"contact": {"solver": "blocks", "acceleration": "conjugate_gradients"}, )" + body + "}",
       "blocks.json");
   ASSERT_FALSE(blocks.ok());
   EXPECT_EQ(blocks.problems[0].path, "contact.acceleration");
-  const SceneReadResult wrong = read_scene_text(
-      R"({"contact": {"acceleration": "nesterov"}, )" + body + "}", "wrong.json");
+  const SceneReadResult by_default = read_scene_text(
+      R"({"contact": {"acceleration": "conjugate_gradients"}, )" + body + "}", "default.json");
+  ASSERT_FALSE(by_default.ok());
+  EXPECT_EQ(by_default.problems[0].path, "contact.acceleration");
+  EXPECT_NE(by_default.problems[0].message.find(R"("solver": "rows")"), std::string::npos)
+      << by_default.problems[0].message;
+  const SceneReadResult wrong =
+      read_scene_text(R"({"contact": {"acceleration": "nesterov"}, )" + body + "}", "wrong.json");
   ASSERT_FALSE(wrong.ok());
   EXPECT_EQ(wrong.problems[0].path, "contact.acceleration");
 }

@@ -51,7 +51,7 @@ TEST(ForceModels, EachSceneGetsTheModelItNames) {
   EXPECT_TRUE(rows.not_distributed_because().empty());
   EXPECT_TRUE(penalty.not_distributed_because().empty());
   EXPECT_TRUE(testing_support::contains(blocks.not_distributed_because(), "'blocks'"));
-  EXPECT_TRUE(testing_support::contains(newton.not_distributed_because(), "'newton'"));
+  EXPECT_TRUE(testing_support::contains(newton.not_distributed_because(), R"("newton")"));
   EXPECT_TRUE(testing_support::contains(paper.not_distributed_because(), "'semm-paper'"));
 }
 

@@ -38,8 +38,8 @@ struct Reference {
 const Reference& reference() {
   static const Reference ref = [] {
     const std::string dir = temp_path("resume_ref");
-    const TemRun run = run_tem("run " + quoted(kScene) + " --out " + quoted(dir) +
-                               " --contacts --hash");
+    const TemRun run =
+        run_tem("run " + quoted(kScene) + " --out " + quoted(dir) + " --contacts --hash");
     EXPECT_EQ(run.status, 0) << run.err;
     Reference r{slurp(dir + "/bodies.csv"), slurp(dir + "/energy.csv"),
                 slurp(dir + "/contacts.csv"), lines(run.out).empty() ? "" : lines(run.out).back()};
@@ -97,8 +97,8 @@ TEST(Resume, AfterCtrlCTheResultIsBitIdentical) {
   EXPECT_EQ(energy.back(), '\n');
   EXPECT_EQ(reference().energy.substr(0, energy.size()), energy);
 
-  expect_same_as_reference(
-      dir, run_tem("run " + quoted(kScene) + " --out " + quoted(dir) + " --contacts --hash --resume"));
+  expect_same_as_reference(dir, run_tem("run " + quoted(kScene) + " --out " + quoted(dir) +
+                                        " --contacts --hash --resume"));
   std::filesystem::remove_all(dir);
 }
 
@@ -117,8 +117,8 @@ TEST(Resume, AfterAKillTheResultIsBitIdentical) {
   EXPECT_LT(at.state.time, 1.0);
   EXPECT_EQ(at.state.step % 1000, 0);
 
-  expect_same_as_reference(
-      dir, run_tem("run " + quoted(kScene) + " --out " + quoted(dir) + " --contacts --hash --resume"));
+  expect_same_as_reference(dir, run_tem("run " + quoted(kScene) + " --out " + quoted(dir) +
+                                        " --contacts --hash --resume"));
   std::filesystem::remove_all(dir);
 }
 
@@ -129,9 +129,10 @@ TEST(Resume, AFinishedRunCanBeExtended) {
   std::string text = slurp(kScene);
   text.replace(text.find("\"duration\": 1.0"), 15, "\"duration\": 0.4");
   std::ofstream(short_scene) << text;
-  ASSERT_EQ(run_tem("run " + quoted(short_scene) + " --out " + quoted(dir) + " --contacts").status, 0);
-  expect_same_as_reference(
-      dir, run_tem("run " + quoted(kScene) + " --out " + quoted(dir) + " --contacts --hash --resume"));
+  ASSERT_EQ(run_tem("run " + quoted(short_scene) + " --out " + quoted(dir) + " --contacts").status,
+            0);
+  expect_same_as_reference(dir, run_tem("run " + quoted(kScene) + " --out " + quoted(dir) +
+                                        " --contacts --hash --resume"));
   std::filesystem::remove_all(dir);
   std::filesystem::remove(short_scene);
 }
@@ -145,7 +146,8 @@ TEST(Resume, NewtonSolverResumesBitIdentical) {
   const std::string scene = temp_path("resume_newton.json");
   std::ofstream(scene) << text;
   const std::string whole = temp_path("resume_newton_whole");
-  const TemRun reference_run = run_tem("run " + quoted(scene) + " --out " + quoted(whole) + " --hash");
+  const TemRun reference_run =
+      run_tem("run " + quoted(scene) + " --out " + quoted(whole) + " --hash");
   ASSERT_EQ(reference_run.status, 0) << reference_run.err;
   const std::string short_scene = temp_path("resume_newton_short.json");
   std::string short_text = text;
@@ -153,7 +155,8 @@ TEST(Resume, NewtonSolverResumesBitIdentical) {
   std::ofstream(short_scene) << short_text;
   const std::string dir = temp_path("resume_newton_ext");
   ASSERT_EQ(run_tem("run " + quoted(short_scene) + " --out " + quoted(dir)).status, 0);
-  const TemRun resumed = run_tem("run " + quoted(scene) + " --out " + quoted(dir) + " --hash --resume");
+  const TemRun resumed =
+      run_tem("run " + quoted(scene) + " --out " + quoted(dir) + " --hash --resume");
   ASSERT_EQ(resumed.status, 0) << resumed.err;
   EXPECT_EQ(lines(resumed.out).back(), lines(reference_run.out).back());
   EXPECT_TRUE(slurp(dir + "/bodies.csv") == slurp(whole + "/bodies.csv")) << "bodies.csv differs";
@@ -176,9 +179,28 @@ TEST(Resume, RefusesWhatItCannotContinue) {
   std::string text = slurp(kScene);
   text.replace(text.find("\"friction\": 0.3"), 15, "\"friction\": 0.4");
   std::ofstream(other) << text;
-  const TemRun wrong_scene = run_tem("run " + quoted(other) + " --out " + quoted(dir) + " --resume");
+  const TemRun wrong_scene =
+      run_tem("run " + quoted(other) + " --out " + quoted(dir) + " --resume");
   EXPECT_NE(wrong_scene.status, 0);
   EXPECT_TRUE(contains(wrong_scene.err, "another scene")) << wrong_scene.err;
+  // A checkpoint taken with the rows solver, the default of earlier builds, resumed with the
+  // scene that names no solver (now Newton): refused, and the message says how to resume it.
+  {
+    const std::string rows_scene = temp_path("resume_rows.json");
+    std::string rows_text = slurp(kScene);
+    rows_text.replace(rows_text.find("\"model\": \"semm\""), 15,
+                      "\"model\": \"semm\", \"solver\": \"rows\"");
+    rows_text.replace(rows_text.find("\"duration\": 1.0"), 15, "\"duration\": 0.01");
+    std::ofstream(rows_scene) << rows_text;
+    const std::string rows_dir = temp_path("resume_rows");
+    ASSERT_EQ(run_tem("run " + quoted(rows_scene) + " --out " + quoted(rows_dir)).status, 0);
+    const TemRun by_default =
+        run_tem("run " + quoted(kScene) + " --out " + quoted(rows_dir) + " --resume");
+    EXPECT_NE(by_default.status, 0);
+    EXPECT_TRUE(contains(by_default.err, R"(add "solver": "rows")")) << by_default.err;
+    std::filesystem::remove_all(rows_dir);
+    std::filesystem::remove(rows_scene);
+  }
   // With --contacts when the run was started without.
   const TemRun flags =
       run_tem("run " + quoted(kScene) + " --out " + quoted(dir) + " --contacts --resume");

@@ -225,7 +225,7 @@ TEST(SceneReader, FillsDefaults) {
   EXPECT_EQ(s.contact.stiffness, 0.0);
   EXPECT_EQ(s.contact.damping, 0.0);
   EXPECT_FALSE(s.contact.margin.has_value());  // "auto"
-  EXPECT_EQ(s.contact.solver, ContactSolver::rows);
+  EXPECT_EQ(s.contact.solver, ContactSolver::newton);
   EXPECT_FALSE(s.container.has_value());
   EXPECT_TRUE(s.walls.empty());
   EXPECT_EQ(s.output.interval, 0.01);
@@ -240,7 +240,7 @@ TEST(SceneReader, FillsDefaults) {
   EXPECT_FALSE(b.fixed);
 }
 
-// contact.margin: "auto" (the default), a number, or 0; contact.solver: rows or blocks.
+// contact.margin: "auto" (the default), a number, or 0; contact.solver: newton (the default), rows or blocks.
 TEST(SceneReader, ContactMarginAndSolver) {
   auto contact = [](const std::string& keys) {
     const SceneReadResult r = read_scene_text(

@@ -81,7 +81,7 @@ def grain_body(friction_material="grain"):
 
 
 def contact(args):
-    return {"model": "semm", "friction": 0.5, "restitution": 0.0,
+    return {"model": "semm", "solver": "rows", "friction": 0.5, "restitution": 0.0,
             "tolerance": 1e-3, "max_sweeps": 20,
             "pairs": [{"materials": ["drum", "grain"], "friction": 0.7}]}
 

@@ -75,7 +75,7 @@ def silo_scene(orifice=ORIFICE, count=COUNT, duration=1.0, gate=GATE, time_step=
         "duration": duration,
         "materials": {"grain": {"friction": GRAIN_FRICTION, "restitution": 0.1},
                       "steel": {"friction": 0.3, "restitution": 0.1}},
-        "contact": {"model": "semm", "tolerance": 1e-3, "max_sweeps": 20,
+        "contact": {"model": "semm", "solver": "rows", "tolerance": 1e-3, "max_sweeps": 20,
                     "pairs": [{"materials": ["grain", "steel"], "friction": WALL_FRICTION}]},
         "container": {"min": [-h, -h, BOTTOM], "max": [h, h, fill_top + 0.5],
                       "material": "steel"},

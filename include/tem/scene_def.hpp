@@ -140,8 +140,11 @@ struct ContactDef {
   // reader fills them in, so a SceneDef always says which is used.
   PatchNormals normals = PatchNormals::faces;
   PatchPoints points = PatchPoints::corners;
-  // When the contact solver (default SEMM and the overlap correction) stops: the sweeps stop once
-  // no impulse changes by more than `tolerance` of the largest, or after `max_sweeps`.
+  // When the contact solver (default SEMM and the overlap correction) stops: Newton (the default
+  // solver) once the momentum its impulses fail to give is at most `tolerance` of their own; the
+  // rows solver's sweeps once no impulse changes by more than `tolerance` of the largest, or after
+  // `max_sweeps` (which Newton reads only for the islands it leaves to the rows and for the
+  // overlap correction).
   Real tolerance = 1e-9;
   int max_sweeps = 500;
   // The order of the solver's sweeps: patch by patch as detected (the default, fastest on one
@@ -153,7 +156,9 @@ struct ContactDef {
   // already make contact points; empty for "auto" (from the bodies' sizes and motion, the
   // default), 0 for none (contact only after overlap).
   std::optional<Real> margin;
-  ContactSolver solver = ContactSolver::rows;
+  // SEMM's solver: Newton's method on the primal problem (the default: its iterations do not grow
+  // with a pile's height), the scalar rows' Gauss-Seidel sweeps, or patch blocks.
+  ContactSolver solver = ContactSolver::newton;
   // The rows solver's sweeps with nonsmooth nonlinear conjugate gradients (semm_rows.cpp): each
   // sweep's change taken as a gradient step and the impulses moved further along a direction
   // that remembers the sweeps before, so that weight reaches the floor of a tall stack in fewer

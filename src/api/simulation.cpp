@@ -35,9 +35,21 @@ Checkpoint read_matching_checkpoint(const Model& model, const std::string& path,
                                     const std::string& scene_name) {
   Checkpoint c = read_checkpoint(path);
   require_same_files(c.files, scene_files(model.scene), path);
-  if (c.scene_fingerprint != scene_fingerprint(model.scene))
+  if (c.scene_fingerprint != scene_fingerprint(model.scene)) {
+    // A scene that names no SEMM solver, checkpointed while the rows were the default.
+    std::string how;
+    if (model.scene.contact.model == ContactModel::semm &&
+        model.scene.contact.solver == ContactSolver::newton) {
+      SceneDef rows = model.scene;
+      rows.contact.solver = ContactSolver::rows;
+      if (c.scene_fingerprint == scene_fingerprint(rows))
+        how =
+            "; it was taken with contact.solver \"rows\", the default before \"newton\": add "
+            "\"solver\": \"rows\" to the scene's contact to resume it";
+    }
     throw std::runtime_error(path + " was taken of another scene than " + scene_name +
-                             " (only duration and checkpoint_interval may change)");
+                             " (only duration and checkpoint_interval may change" + how + ")");
+  }
   // Where bodies come and go, the checkpoint's tags say which are there (restore checks them).
   if (!model.bodies_come_and_go && c.state.bodies.size() != model.bodies.size())
     throw std::runtime_error(path + " holds " + std::to_string(c.state.bodies.size()) +
@@ -73,8 +85,8 @@ void Simulation::Impl::reserve_capacity() {
     angular_velocities.reserve(3 * capacity);
   } catch (const std::exception&) {  // std::bad_alloc, or std::length_error past max_size()
     // Not a bare "std::bad_alloc": say how many bodies, how much memory and which keys.
-    const double per_body = sizeof(Body) + sizeof(BodyState) + sizeof(BodyTag) +
-                            2 * sizeof(Vec3) + 7 * sizeof(Real);
+    const double per_body =
+        sizeof(Body) + sizeof(BodyState) + sizeof(BodyTag) + 2 * sizeof(Vec3) + 7 * sizeof(Real);
     std::ostringstream m;
     m << "the run must hold up to " << capacity << " bodies at once (" << model.bodies.size()
       << " at the start";
@@ -195,8 +207,8 @@ Simulation Simulation::resume(const std::string& scene_file, const std::string& 
   return sim;
 }
 
-Simulation Simulation::resume_recording(const std::string& scene_file,
-                                        const std::string& directory, bool contacts) {
+Simulation Simulation::resume_recording(const std::string& scene_file, const std::string& directory,
+                                        bool contacts) {
   Simulation sim = load(scene_file);
   Impl& m = *sim.impl_;
   const std::string file = directory + "/checkpoint.bin";
@@ -310,12 +322,8 @@ const Real* Simulation::velocity_data() const {
 }
 std::ptrdiff_t Simulation::state_stride() const { return sizeof(BodyState); }
 const Real* Simulation::quaternion_data() const { return impl_->quaternions.data(); }
-const Real* Simulation::angular_velocity_data() const {
-  return impl_->angular_velocities.data();
-}
-int Simulation::first_non_finite_body() const {
-  return tem::first_non_finite_body(impl_->state);
-}
+const Real* Simulation::angular_velocity_data() const { return impl_->angular_velocities.data(); }
+int Simulation::first_non_finite_body() const { return tem::first_non_finite_body(impl_->state); }
 
 // --- external loads ------------------------------------------------------------------------
 

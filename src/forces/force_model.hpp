@@ -4,9 +4,9 @@
 // its own in one folder under src/forces/:
 //
 //   penalty/      springs and dashpots (contact.model "penalty")
-//   semm_rows/    SEMM by projected Gauss-Seidel over scalar rows (the default)
+//   semm_newton/  SEMM by Newton's method on the primal problem (the default)
+//   semm_rows/    SEMM by projected Gauss-Seidel over scalar rows (contact.solver "rows")
 //   semm_blocks/  SEMM by patch blocks (contact.solver "blocks")
-//   semm_newton/  SEMM by Newton's method on the primal problem (contact.solver "newton")
 //   semm_paper/   the paper's SEMM (contact.model "semm-paper")
 //
 // force_models.cpp is the one place that knows them all: a new model is a new folder, its

@@ -93,14 +93,13 @@ Mat3 rotation_z_cs(Real c, Real s) {
 
 const KeyList kSceneKeys = {"gravity",   "time_step", "duration", "integrator", "contact",
                             "container", "walls",     "bodies",   "fill",       "output",
-                            "materials", "inlets",    "outlets",  "sensors",
-                            "sleep"};
-const KeyList kContactKeys = {"model",     "friction",   "restitution",
-                              "stiffness", "damping",    "normals",
-                              "points",    "law",        "tangential_stiffness",
-                              "tolerance", "max_sweeps", "sweep_order",
-                              "margin",    "solver",     "pairs",
-                              "substeps",  "pair_cache", "acceleration",
+                            "materials", "inlets",    "outlets",  "sensors",    "sleep"};
+const KeyList kContactKeys = {"model",        "friction",      "restitution",
+                              "stiffness",    "damping",       "normals",
+                              "points",       "law",           "tangential_stiffness",
+                              "tolerance",    "max_sweeps",    "sweep_order",
+                              "margin",       "solver",        "pairs",
+                              "substeps",     "pair_cache",    "acceleration",
                               "max_substeps", "substep_motion"};
 const KeyList kContainerKeys = {"min", "max", "material"};
 const KeyList kRegionKeys = {"min", "max"};
@@ -159,8 +158,8 @@ class SceneReader {
     if (const Json* j = Reader::get(root, "materials"))
       p_.read_materials(*j, "materials", &scene->materials);
     if (const Json* j = Reader::get(root, "contact")) read_contact(*j, "contact", &scene->contact);
-    // Sub-steps carry the points of contact before overlap through the step (refreshed_patches.hpp);
-    // the other modes have no points to carry.
+    // Sub-steps carry the points of contact before overlap through the step
+    // (refreshed_patches.hpp); the other modes have no points to carry.
     if (!contact_before_overlap(*scene)) {
       const ContactDef& c = scene->contact;
       for (const auto& [key, count] : {std::pair{"contact.max_substeps", c.max_substeps},
@@ -169,16 +168,17 @@ class SceneReader {
           r_.fail(key,
                   "must be 1 unless contact is made before overlap (model \"semm\" with face "
                   "normals, corner points, the default integrator and a margin other than 0), "
-                  "got " + std::to_string(count));
+                  "got " +
+                      std::to_string(count));
       }
     }
     // Conjugate gradients accelerate the rows solver's sweeps; the other solvers have none.
-    if (scene->contact.conjugate_gradients &&
-        (scene->contact.model != ContactModel::semm ||
-         scene->contact.solver != ContactSolver::rows))
+    if (scene->contact.conjugate_gradients && (scene->contact.model != ContactModel::semm ||
+                                               scene->contact.solver != ContactSolver::rows))
       r_.fail("contact.acceleration",
               "\"conjugate_gradients\" needs model \"semm\" with solver \"rows\" (it "
-              "accelerates that solver's sweeps)");
+              "accelerates that solver's sweeps; the default solver is \"newton\"): add "
+              "\"solver\": \"rows\" to contact, or remove the acceleration");
     if (const Json* j = Reader::get(root, "container")) {
       ContainerDef container;
       if (read_container(*j, "container", &container)) scene->container = container;
@@ -277,9 +277,9 @@ class SceneReader {
         r_.read_number(j, path, "stiffness", &contact->stiffness, Bound::non_negative);
     r_.read_number(j, path, "damping", &contact->damping, Bound::non_negative);
     if (const Json* l = Reader::get(j, "law")) {
-      if (auto law = r_.choice<PenaltyLaw>(*l, child(path, "law"),
-                                           {{"linear", PenaltyLaw::linear},
-                                            {"hertz", PenaltyLaw::hertz}})) {
+      if (auto law = r_.choice<PenaltyLaw>(
+              *l, child(path, "law"),
+              {{"linear", PenaltyLaw::linear}, {"hertz", PenaltyLaw::hertz}})) {
         contact->law = *law;
       }
     }
@@ -294,9 +294,9 @@ class SceneReader {
       r_.fail(child(path, "substep_motion"),
               "has no effect without max_substeps (the most sub-steps a step may take)");
     if (contact->max_substeps > 0 && contact->max_substeps < contact->substeps)
-      r_.fail(child(path, "max_substeps"),
-              "must be at least substeps (" + std::to_string(contact->substeps) + "), got " +
-                  std::to_string(contact->max_substeps));
+      r_.fail(child(path, "max_substeps"), "must be at least substeps (" +
+                                               std::to_string(contact->substeps) + "), got " +
+                                               std::to_string(contact->max_substeps));
     r_.read_bool(j, path, "pair_cache", &contact->pair_cache);
     if (const Json* o = Reader::get(j, "sweep_order")) {
       if (auto coloured = r_.choice<bool>(*o, child(path, "sweep_order"),
@@ -316,11 +316,10 @@ class SceneReader {
       }
     }
     if (const Json* v = Reader::get(j, "solver")) {
-      if (auto solver = r_.choice<ContactSolver>(
-              *v, child(path, "solver"),
-              {{"rows", ContactSolver::rows},
-               {"blocks", ContactSolver::blocks},
-               {"newton", ContactSolver::newton}})) {
+      if (auto solver = r_.choice<ContactSolver>(*v, child(path, "solver"),
+                                                 {{"rows", ContactSolver::rows},
+                                                  {"blocks", ContactSolver::blocks},
+                                                  {"newton", ContactSolver::newton}})) {
         contact->solver = *solver;
       }
     }

@@ -121,8 +121,8 @@ Body build_body(const BodyDef& def, Model& model, Real scale) {
                        "\"semm-paper\" does not have; use \"semm\" or \"penalty\"");
     if (c.model == ContactModel::semm && c.solver == ContactSolver::blocks)
       throw SceneError(def.path + ".motion.surface_velocity",
-                       "a sliding surface is solved by contact.solver \"rows\" (the default) or "
-                       "\"newton\", not \"blocks\"");
+                       "a sliding surface is solved by contact.solver \"newton\" (the default) or "
+                       "\"rows\", not \"blocks\"");
   }
   if (def.removed_at) body.removed_at = *def.removed_at;
 

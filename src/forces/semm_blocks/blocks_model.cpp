@@ -21,7 +21,7 @@ class BlocksModel final : public DefaultSemmModel {
                      f.correction.impulses, f.correction.moved, stopping);
   }
   std::string not_distributed_because() const override {
-    return "over MPI ranks SEMM runs with contact.solver 'rows' (the default); 'blocks' is not "
+    return "over MPI ranks SEMM runs with contact.solver 'rows'; 'blocks' is not "
            "distributed: run this scene without mpirun, or with the rows solver";
   }
 };

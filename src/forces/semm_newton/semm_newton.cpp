@@ -519,13 +519,18 @@ Balance balance(const Island& island, const std::vector<BodyResponse>& bodies,
   return {std::sqrt(residual), std::sqrt(made), std::sqrt(size)};
 }
 
+// How a run of Newton's iterations may end: at the stopping rule (`solve`); or, in the polish,
+// only after one iteration at least (`polish_budget`), and also as soon as two iterations in a
+// row fail to halve the gradient (`polish`).
+enum class Iterations { solve, polish_budget, polish };
+
 // Newton's iterations on one island until l's gradient balances (the stopping rule) or the
-// island has taken `budget` iterations in all (false). With `contracting` (the polish), also
-// false as soon as two iterations in a row fail to halve the gradient: started next to its
-// answer, the polish converges at Newton's local rate or not at all; one iteration may cross a
-// kink first (a box pushed along the floor: the load moves among its corners as the normal
-// rows turn exact, the gradient stays, and the next iteration lands); and at least one
-// iteration is taken.
+// island has taken `budget` iterations in all (false). With Iterations::polish, also false as
+// soon as two iterations in a row fail to halve the gradient: started next to its answer, the
+// polish converges at Newton's local rate or not at all; one iteration may cross a kink first (a
+// box pushed along the floor: the load moves among its corners as the normal rows turn exact,
+// the gradient stays, and the next iteration lands). In the polish at least one iteration is
+// taken.
 // Why the one: the polish's start (the regularised answer) often meets the tolerance already,
 // and the impulses read off the rows there are off by the gradient, up to the tolerance: a box
 // at rest would move at up to 3e-10 cm/s in some steps. One Newton step from there lands on
@@ -534,7 +539,7 @@ Balance balance(const Island& island, const std::vector<BodyResponse>& bodies,
 // (true): the regularised answer's first pass, whose limits are about to move (solve_island).
 bool newton_iterations(
     Island& island, const std::vector<BodyResponse>& bodies, const IslandProblem& problem,
-    NewtonState& s, Real band, Real tolerance, int budget, bool contracting = false,
+    NewtonState& s, Real band, Real tolerance, int budget, Iterations rule = Iterations::solve,
     const std::function<bool(const NewtonState&, const Balance&)>& stop_early = {}) {
   Real last = std::numeric_limits<Real>::infinity();
   bool halved_before = true;
@@ -542,10 +547,11 @@ bool newton_iterations(
   while (true) {
     evaluate(island, problem, s, island.iterations == 0 ? band : -1, true);
     const Balance b = balance(island, bodies, problem, s);
-    if (b.met(tolerance) && !(contracting && island.iterations == first)) return true;
+    if (b.met(tolerance) && !(rule != Iterations::solve && island.iterations == first)) return true;
     if (stop_early && stop_early(s, b)) return true;
     const bool halved = b.residual <= 0.5 * last;
-    if (island.iterations >= budget || (contracting && !halved && !halved_before)) return false;
+    if (island.iterations >= budget || (rule == Iterations::polish && !halved && !halved_before))
+      return false;
     halved_before = halved;
     last = b.residual;
     assemble(island, problem, s);
@@ -717,7 +723,7 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
     return early;
   };
   bool solved = newton_iterations(island, bodies, problem, s, band, tolerance, kMaxNewtonIterations,
-                                  false, limits_move);
+                                  Iterations::solve, limits_move);
   if (solved) {
     // Stopped early, `trial` holds the limits of the iterate it stopped at.
     if (early) {
@@ -768,10 +774,10 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
           (row.held ? newton::kExactRegularisation : newton::kSlipRegularisation) * row.delassus;
     }
     const int budget = island.iterations + kMaxPolishIterations;
+    const Iterations rule = friction ? Iterations::polish : Iterations::polish_budget;
     bool limits_polished = false;
     Real last_miss = std::numeric_limits<Real>::infinity();
-    bool polished =
-        newton_iterations(island, bodies, problem, s, band, tolerance, budget, friction);
+    bool polished = newton_iterations(island, bodies, problem, s, band, tolerance, budget, rule);
     while (polished) {
       bool let_go = false;
       for (size_t r = 0; r < rows.size(); ++r)
@@ -812,7 +818,7 @@ void solve_island(const std::vector<ContactPoint>& points, const std::vector<Rea
         limits_moved = change > tolerance * largest;
       }
       if (!mirror_rows(island, bodies, problem, s) && !let_go && !recentred && !limits_moved) break;
-      polished = newton_iterations(island, bodies, problem, s, band, tolerance, budget, friction);
+      polished = newton_iterations(island, bodies, problem, s, band, tolerance, budget, rule);
     }
     return polished;
   };

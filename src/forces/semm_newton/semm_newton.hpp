@@ -1,4 +1,4 @@
-// SEMM solved by Newton's method on the primal problem (contact.solver "newton", opt-in;
+// SEMM solved by Newton's method on the primal problem (contact.solver "newton", the default;
 // method.md, "SEMM by Newton"): the impulses that minimise the system's energy at the next step,
 // normal impulses >= 0, each patch's friction, twist and rolling resistance inside their Coulomb
 // limits, with an iteration count that does not grow with the height of a column.
