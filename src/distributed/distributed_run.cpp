@@ -84,9 +84,10 @@ bool any_rank(MPI_Comm comm, bool mine) {
 
 }  // namespace
 
+// The force model's reason comes last: a process scene that names no solver (Newton, the
+// default, is not distributed) would otherwise be told to name the rows, and then be refused
+// again for its processes.
 std::string unsupported_reason(const SceneDef& scene) {
-  const std::string model_reason = force_model(scene.contact).not_distributed_because();
-  if (!model_reason.empty()) return model_reason;
   // Each sub-step's solve would need the ghosts' forces returned between the sub-steps.
   if (scene.contact.substeps > 1 || scene.contact.max_substeps > 1)
     return "over MPI ranks TEM does not yet run sub-steps (contact.substeps or "
@@ -104,11 +105,11 @@ std::string unsupported_reason(const SceneDef& scene) {
   if (scene.sleep)
     return "over MPI ranks TEM does not put bodies to sleep: islands of bodies at rest can span "
            "ranks; remove the scene's `sleep`, or run it without mpirun (threads: --threads N)";
-  return "";
+  return force_model(scene.contact).not_distributed_because();
 }
 
-RunResult run_steps(Domain& domain, Model& model, State& state, Workspace& w,
-                    const RunPlan& plan, const std::function<bool()>& stop_requested,
+RunResult run_steps(Domain& domain, Model& model, State& state, Workspace& w, const RunPlan& plan,
+                    const std::function<bool()>& stop_requested,
                     const std::function<void(long long, Real)>& progress) {
   RunResult result;
   RankHooks hooks(domain, plan, state.step);

@@ -23,7 +23,9 @@ built with TEM_MPI). Usage: check_mpi_runs.py MODE TEM MPIEXEC SCENE WORKDIR
              the ranks' pieces, whose arrays are the ones the .pvtu declares, and which hold
              together one process's bodies (every body's points, bit for bit) and contacts
   refuse     a scene whose contact model the distributed engine does not carry is refused on
-             every rank with a reason and exit code 1, not run wrongly
+             every rank with a reason and exit code 1, not run wrongly: the paper's SEMM, the
+             SEMM pour with its solver left to the default (Newton), whose refusal says to name
+             the rows, and a process scene, refused for its processes
 """
 import csv
 import math
@@ -264,6 +266,18 @@ elif MODE == "refuse":
         sys.exit(f"the refusal does not say why and what to do:\n{message}")
     if message.count("is not distributed") != 1:
         sys.exit(f"the reason should be printed once (by rank 0):\n{message}")
+    print("refused with:", message.strip())
+    # SEMM's default solver, Newton, is not distributed: the refusal names the key that runs it.
+    pour = os.path.join(os.path.dirname(SCENE), "..", "..", "tests", "scenes", "mpi",
+                        "semm_pour.json")
+    with open(pour) as f:
+        text = f.read()
+    by_default = os.path.join(WORK, "semm_pour_default_solver.json")
+    with open(by_default, "w") as f:
+        f.write(text.replace('"solver": "rows", ', "", 1))
+    message = run([by_default, "--out", fresh("refused_newton")], 2, expect=1)
+    if '"newton"' not in message or 'add "solver": "rows"' not in message:
+        sys.exit(f"the default solver is not refused with what to do:\n{message}")
     print("refused with:", message.strip())
     # Granular processes (bodies that come and go, sensors) are not distributed yet either.
     process = os.path.join(os.path.dirname(SCENE), "..", "..", "tests", "scenes", "processes",

@@ -25,7 +25,7 @@ class PaperModel final : public ForceModel {
   }
   bool solves_across_ranks() const override { return true; }
   std::string not_distributed_because() const override {
-    return "over MPI ranks TEM runs the penalty and the default SEMM contact models; "
+    return "over MPI ranks TEM runs the penalty model and SEMM with the rows solver; "
            "contact.model 'semm-paper' (the paper's direct solve) is not distributed: run this "
            "scene without mpirun (threads: --threads N)";
   }
