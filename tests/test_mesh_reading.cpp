@@ -10,6 +10,7 @@
 #include <cstring>
 #include <cmath>
 #include <filesystem>
+#include <system_error>
 #include <fstream>
 #include <iostream>
 #include <numbers>
@@ -34,14 +35,29 @@ using namespace tem::testing_support;
 namespace fs = std::filesystem;
 
 // A directory of this test's own, under the test framework's temporary directory.
+fs::path scratch_path(const ::testing::TestInfo& info) {
+  return fs::path(::testing::TempDir()) / ("tem_mesh_" + std::to_string(::getpid()) + "_" +
+                                           info.test_suite_name() + "_" + info.name());
+}
+
 fs::path scratch_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::path(::testing::TempDir()) /
-                       ("tem_mesh_" + std::to_string(::getpid()) + "_" + info->test_suite_name() +
-                        "_" + info->name());
+  const fs::path dir = scratch_path(*::testing::UnitTest::GetInstance()->current_test_info());
   fs::create_directories(dir);
   return dir;
 }
+
+// Each test's directory goes when the test ends, passed or failed: the files are written by
+// the test itself, and a run of the suite left some 30 folders in /tmp.
+class RemoveScratch : public ::testing::EmptyTestEventListener {
+  void OnTestEnd(const ::testing::TestInfo& info) override {
+    std::error_code ignored;
+    fs::remove_all(scratch_path(info), ignored);
+  }
+};
+[[maybe_unused]] const bool kScratchRemoved = [] {
+  ::testing::UnitTest::GetInstance()->listeners().Append(new RemoveScratch);
+  return true;
+}();
 
 // Volume from Eberly's surface integrals: a route that shares no code with check_mesh().
 Real surface_volume(const TriangleMesh& mesh) {
